@@ -1,0 +1,62 @@
+// Paper §3: the chain of sharp edges a seed selects, and the two base meshes on either side of it.
+#pragma once
+#include <unordered_map>
+#include <unordered_set>
+#include <vector>
+
+#include "meshround/mesh.h"
+
+namespace meshround {
+
+// How a chain ends (open chains only).
+enum class ChainEnd {
+  Junction,  // three or more sharp edges meet: the end is capped by the other faces there
+  Boundary,  // the mesh boundary
+  Turn,      // the chain turns by more than the feature angle
+  Fade,      // the edge stops being sharp
+};
+
+// An ordered polyline of sharp mesh edges. For a closed loop the first vertex is not repeated and the
+// closing edge is (vertices.back(), vertices.front()).
+struct SharpChain {
+  std::vector<int> vertices;
+  bool closed = false;
+  ChainEnd start_end = ChainEnd::Fade, end_end = ChainEnd::Fade;
+  // Per chain edge i (vertices[i], vertices[i+1]): its facet on side A and on side B.
+  std::vector<int> facet_a, facet_b;
+  std::vector<Vec3> points;       // vertex positions, in chain order
+  std::vector<double> arc_length; // s at each vertex (0 at the start)
+  double length = 0;              // total length (includes the closing edge of a loop)
+
+  int num_edges() const { return int(facet_a.size()); }
+  // Point and smoothed unit tangent at arc length s (wrapped for a loop, clamped otherwise).
+  Vec3 point_at(double s) const;
+  Vec3 tangent_at(double s) const;
+  // Arc length of the chain point nearest to p, and the distance to it.
+  double project(const Vec3& p, double* distance) const;
+
+ private:
+  friend SharpChain trace_chain(const MeshTopology&, const Vec3&, double, double);
+  void finish_geometry(const MeshTopology& mesh);
+  int segment_at(double s, double* local) const;
+  std::vector<Vec3> vertex_tangents_;
+};
+
+// The sharp edge nearest to `seed` (within `search_radius`) and the whole chain through it.
+// Throws RoundingError when no sharp edge is near the seed.
+SharpChain trace_chain(const MeshTopology& mesh, const Vec3& seed, double feature_angle_deg,
+                       double search_radius);
+
+// The facets within `reach_distance` of the chain, split into its two sides. A base mesh is bounded
+// by the chain, other sharp edges, the mesh boundary and the reach.
+struct BaseMeshes {
+  std::vector<int> facets[2];                  // side A = 0, side B = 1
+  std::unordered_map<int, int> side_of;        // facet -> side
+  std::unordered_set<std::uint64_t> walls[2];  // edges where a side stops (sharp edge, boundary)
+  std::unordered_set<std::uint64_t> reach_limit[2];  // edges where a side stops only for the reach
+};
+
+BaseMeshes collect_base_meshes(const MeshTopology& mesh, const SharpChain& chain, double reach_distance,
+                               double feature_angle_deg);
+
+}  // namespace meshround

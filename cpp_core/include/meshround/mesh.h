@@ -1,0 +1,77 @@
+// MeshTopology: the adjacency view of (V, F) that all passes share, built once in O(n).
+// Orientation of the input does not matter anywhere: facet normals are compared after aligning them
+// across the shared edge.
+#pragma once
+#include <array>
+#include <cstdint>
+#include <unordered_map>
+#include <vector>
+
+#include "meshround/types.h"
+
+namespace meshround {
+
+inline std::uint64_t edge_key(int a, int b) {
+  if (a > b) std::swap(a, b);
+  return (std::uint64_t(std::uint32_t(a)) << 32) | std::uint32_t(b);
+}
+
+class MeshTopology {
+ public:
+  // V: (n, 3), F: (m, 3). Throws RoundingError for an empty mesh, NaN/inf coordinates or bad indices.
+  MeshTopology(const Points& V, const Triangles& F);
+
+  const Points& V;
+  const Triangles& F;
+
+  int num_vertices() const { return int(V.rows()); }
+  int num_facets() const { return int(F.rows()); }
+  Vec3 point(int v) const { return V.row(v).transpose(); }
+  Vec3 corner(int f, int k) const { return V.row(F(f, k)).transpose(); }
+
+  // Facets around vertex v (unordered).
+  const int* facets_begin(int v) const { return vf_.data() + vf_start_[v]; }
+  const int* facets_end(int v) const { return vf_.data() + vf_start_[v + 1]; }
+
+  // Facets that share the edge (a, b): 1 on a boundary, 2 inside, more where the mesh is non-manifold.
+  std::vector<int> edge_facets(int a, int b) const;
+  // The other facet on edge (a, b) of facet f, or -1 when the edge is a boundary or non-manifold.
+  int neighbour(int f, int a, int b) const;
+  // Vertices joined to v by an edge.
+  std::vector<int> vertex_neighbours(int v) const;
+
+  Vec3 facet_normal(int f) const;  // unit normal (zero for a degenerate facet)
+  bool facet_has_edge(int f, int a, int b) const;
+  // +1 when facet f runs a -> b, -1 when it runs b -> a.
+  int edge_direction(int f, int a, int b) const;
+  // Angle (degrees) between the two facets of an edge, normals aligned across it; 0 = flat.
+  // Returns 180 for a boundary or non-manifold edge (treated as a feature everywhere).
+  double dihedral_deg(int a, int b) const;
+
+ private:
+  std::vector<int> vf_start_, vf_;
+};
+
+// Closest point on triangle (a, b, c) to p. `region` tells where it lies: 0 inside, 1..3 on edge
+// (ab, bc, ca), 4..6 on vertex (a, b, c) -- the paper's facet / edge / vertex contact regions.
+Vec3 closest_point_on_triangle(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c, int* region);
+Vec3 closest_point_on_segment(const Vec3& p, const Vec3& a, const Vec3& b, double* t);
+
+// Uniform hash grid of axis-aligned boxes: the local searches (chain distance, closest facet) stay
+// proportional to the band, not the mesh.
+class BoxGrid {
+ public:
+  explicit BoxGrid(double cell) : cell_(cell) {}
+  void insert(int id, const Vec3& lo, const Vec3& hi);
+  // Ids whose boxes may overlap the box [lo, hi] (may repeat an id).
+  void query(const Vec3& lo, const Vec3& hi, std::vector<int>& out) const;
+
+ private:
+  std::array<long, 3> cell_of(const Vec3& p) const;
+  static std::uint64_t key(long i, long j, long k);
+  double cell_;
+  std::unordered_map<std::uint64_t, std::vector<int>> cells_;
+  std::vector<int> oversized_;  // boxes spanning too many cells: returned by every query
+};
+
+}  // namespace meshround

@@ -1,0 +1,39 @@
+// MeshEdit: the edits the passes make to the input mesh, kept apart from it until the end so that the
+// input is never touched and a failure leaves nothing half done.
+#pragma once
+#include <array>
+#include <unordered_map>
+#include <unordered_set>
+#include <vector>
+
+#include "meshround/mesh.h"
+
+namespace meshround {
+
+struct MeshEdit {
+  explicit MeshEdit(const MeshTopology& in) : input(in) {}
+
+  const MeshTopology& input;
+  std::vector<Vec3> new_points;            // vertex ids num_vertices(), num_vertices() + 1, ...
+  std::unordered_map<int, Vec3> moved;     // input vertices snapped onto a trim line
+  std::unordered_set<int> removed;         // input facets removed or replaced by pieces
+  std::vector<std::array<int, 3>> added;   // new facets (pieces of cut facets, the round, end caps)
+  std::unordered_map<std::uint64_t, int> edge_point;  // input edge -> the trim vertex inserted on it
+
+  int add_point(const Vec3& p) {
+    new_points.push_back(p);
+    return input.num_vertices() + int(new_points.size()) - 1;
+  }
+  Vec3 point(int v) const {
+    if (v >= input.num_vertices()) return new_points[v - input.num_vertices()];
+    auto it = moved.find(v);
+    return it != moved.end() ? it->second : input.point(v);
+  }
+};
+
+// Triangulates a simple polygon (vertex ids, in order) in the plane with normal `normal`: ear clipping
+// that always cuts the best-shaped ear. Triangles keep the polygon's orientation.
+void triangulate_polygon(const MeshEdit& edit, const std::vector<int>& polygon, const Vec3& normal,
+                         std::vector<std::array<int, 3>>& out);
+
+}  // namespace meshround

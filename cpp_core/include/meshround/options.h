@@ -1,0 +1,26 @@
+// RoundOptions: everything a rounding call can be told, with the defaults the paper uses.
+#pragma once
+#include <vector>
+
+#include "meshround/types.h"
+
+namespace meshround {
+
+// A radius control point: the radius wanted where the chain passes nearest to `point`.
+struct RadiusControl {
+  Vec3 point;
+  double radius;
+};
+
+struct RoundOptions {
+  double radius = 1.0;                 // ball radius (mm); used when `radius_law` is empty
+  std::vector<RadiusControl> radius_law;  // variable radius: control points along the chain (optional)
+  double tolerance = 0.0;              // chordal tolerance of the new facets; <= 0 means r_max / 100
+  double feature_angle_deg = 30.0;     // an edge is sharp when its two facets turn by at least this
+  double reach = 3.0;                  // base meshes are the facets within reach * r_max of the chain
+
+  double max_radius() const;
+  double effective_tolerance() const { return tolerance > 0 ? tolerance : max_radius() / 100.0; }
+};
+
+}  // namespace meshround

@@ -1,0 +1,27 @@
+// Paper §4.4: the radius along a chain, constant or given by control points.
+//
+// Control points are projected onto the chain (by arc length). Two points give the linear start->end
+// law; three or more a C1 monotone cubic (Fritsch-Carlson: no overshoot between neighbouring values);
+// the radius is constant before the first and after the last point, periodic on a closed loop.
+#pragma once
+#include <vector>
+
+#include "meshround/chain.h"
+#include "meshround/options.h"
+
+namespace meshround {
+
+class RadiusLaw {
+ public:
+  // Throws RoundingError for a radius <= 0, or a control point farther than `max_distance` from the chain.
+  RadiusLaw(const RoundOptions& options, const SharpChain& chain, double max_distance);
+  double at(double s) const;
+  double min_radius() const;
+  double max_radius() const;
+
+ private:
+  std::vector<double> s_, r_, slope_;
+  double period_ = 0;  // > 0 on a closed loop
+};
+
+}  // namespace meshround

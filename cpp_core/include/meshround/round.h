@@ -1,0 +1,61 @@
+// round_edges(): the passes of the paper in order, for every chain the seeds select.
+//
+//   trace_chain -> collect_base_meshes -> solve_station (adaptive) -> loft_profiles
+//     -> trim_base_meshes -> mesh_rounding_surface -> sew_round -> write_mesh
+//
+// Chains are rounded one after the other, each on the result of the previous one.
+#pragma once
+#include <map>
+#include <string>
+#include <vector>
+
+#include "meshround/chain.h"
+#include "meshround/options.h"
+
+namespace meshround {
+
+struct ChainReport {
+  bool closed = false;
+  double length = 0;
+  int stations = 0;               // profiles lofted
+  int facets_removed = 0, facets_cut = 0, facets_added = 0;
+  int vertices_snapped = 0;
+  int contacts_on_edges = 0, contacts_on_vertices = 0;  // profiles whose contact is not inside a facet
+  double surface_deviation = 0;   // largest distance found between the lofted surface and the exact rolling ball
+  double mesh_deviation = 0;      // largest distance found between new facets and the surface
+  int profile_rows = 0;
+  int gap_facets = 0, open_gaps = 0;
+};
+
+struct RoundedChain {
+  std::vector<Vec3> chain;                 // the sharp-edge polyline
+  std::vector<Vec3> spine;                 // ball centres
+  std::vector<Vec3> contacts[2];           // contact points, side A and B
+  std::string brep;                        // the rounding face, OCCT BRep text
+  ChainReport report;
+};
+
+struct RoundReport {
+  int facets_removed = 0, facets_added = 0;
+  double max_deviation = 0;          // max over chains of the measured facet-to-surface distance
+  double min_new_angle_deg = 180;    // smallest angle of any new facet
+  double min_input_angle_deg = 180;  // smallest angle of the input facets that were cut
+  bool input_forces_small_angles = false;
+  std::map<std::string, double> seconds;  // per pass, summed over chains
+  double seconds_total = 0;
+};
+
+struct RoundResult {
+  Points vertices;
+  Triangles triangles;
+  std::vector<RoundedChain> chains;
+  RoundReport report;
+};
+
+RoundResult round_edges(const Points& V, const Triangles& F, const std::vector<Vec3>& seeds, const RoundOptions& options);
+
+// The chains the seeds select (for highlighting a pick); one per distinct chain.
+std::vector<SharpChain> find_chains(const Points& V, const Triangles& F, const std::vector<Vec3>& seeds,
+                                    double feature_angle_deg);
+
+}  // namespace meshround

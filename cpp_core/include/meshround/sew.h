@@ -1,0 +1,23 @@
+// Paper §5.3: the round and the trimmed mesh become one conforming mesh.
+//
+// The round already shares its boundary vertices with the trim lines, so sewing is: orient the round
+// like its neighbours, close the gaps left at capped chain ends (planar end-face pieces between the end
+// profile and the trimmed end face), and write the compact output arrays.
+#pragma once
+#include "meshround/mesh_edit.h"
+
+namespace meshround {
+
+struct SewStats {
+  int gap_facets = 0;     // facets added to close gaps at chain ends
+  int open_gaps = 0;      // gaps left open (they reach the mesh boundary)
+  bool round_flipped = false;
+};
+
+// `round_begin`: index in edit.added of the round's first facet (the rest up to round_end are the round).
+SewStats sew_round(MeshEdit& edit, size_t round_begin, size_t round_end);
+
+// The edited mesh as compact arrays: unused vertices dropped, input vertices keep their order and values.
+void write_mesh(const MeshEdit& edit, Points& V, Triangles& F);
+
+}  // namespace meshround

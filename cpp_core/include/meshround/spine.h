@@ -1,0 +1,50 @@
+// Paper §4.1-4.3: ball centres and exact contact points.
+//
+// Instead of intersecting offset meshes and repairing the centres afterwards, each centre is solved
+// directly: in the section plane through the chain point at arc length s, find c with
+// dist(c, base A) = dist(c, base B) = r (Newton on the exact point-to-mesh distances). The closest
+// points are the contacts, whether they lie on a facet, an edge or a vertex of a base mesh, and the
+// profile through them is exact: the sphere touches both base meshes there.
+#pragma once
+#include <vector>
+
+#include "meshround/chain.h"
+
+namespace meshround {
+
+enum class ContactRegion { Facet = 0, Edge = 1, Vertex = 2 };
+
+struct ProfileStation {
+  double s = 0;                 // arc length along the chain = the surface's u parameter
+  double radius = 0;
+  Vec3 centre;                  // ball centre (a point of the spine)
+  Vec3 contact[2];              // contact on side A, side B
+  ContactRegion region[2]{};
+  double angle() const;         // opening angle of the profile arc (radians)
+};
+
+// Exact closest points on one base mesh.
+class BaseDistance {
+ public:
+  BaseDistance(const MeshTopology& mesh, const std::vector<int>& facets, double cell);
+  // Closest point of the base mesh to p; `facet` and `region` (closest_point_on_triangle's code) out.
+  Vec3 closest(const Vec3& p, double guess_radius, int* facet = nullptr, int* region = nullptr) const;
+
+ private:
+  const MeshTopology& mesh_;
+  const std::vector<int>& facets_;
+  BoxGrid grid_;
+};
+
+struct SpineContext {
+  const MeshTopology& mesh;
+  const SharpChain& chain;
+  const BaseMeshes& base;
+  const BaseDistance* distance[2];
+};
+
+// The ball of radius r at arc length s. Throws RoundingError (naming the place) when no ball of that
+// radius fits between the base meshes there.
+ProfileStation solve_station(const SpineContext& ctx, double s, double r);
+
+}  // namespace meshround

@@ -1,0 +1,35 @@
+// Paper §4.4-4.5: exact circular profiles as rational quadratic NURBS, lofted into one OCCT B-spline
+// surface per chain (cubic along the spine, rational quadratic across; periodic for a closed loop).
+#pragma once
+#include <Geom_BSplineSurface.hxx>
+#include <TopoDS_Face.hxx>
+#include <string>
+#include <vector>
+
+#include "meshround/spine.h"
+
+namespace meshround {
+
+struct RoundingSurface {
+  Handle(Geom_BSplineSurface) surface;
+  TopoDS_Face face;
+  bool closed = false;
+  double u_first = 0, u_last = 0;  // u = arc length along the chain; v in [0, 1] from side A to side B
+
+  Vec3 value(double u, double v) const;
+  // Point, d/du and d/dv.
+  void d1(double u, double v, Vec3& p, Vec3& du, Vec3& dv) const;
+  double wrap(double u) const;  // into [u_first, u_last) for a closed surface, clamped otherwise
+};
+
+// Rational quadratic Bezier of the circular arc from contact A to contact B about the centre:
+// poles (3) and weights (1, cos(angle/2), 1).
+void profile_arc(const ProfileStation& st, Vec3 poles[3], double weights[3]);
+
+// Lofts the profiles (at least 4, sorted by s; for a loop, s in [0, period) and no repeat).
+RoundingSurface loft_profiles(const std::vector<ProfileStation>& stations, bool closed, double period);
+
+// OCCT BRep text of a face (what FreeCAD's Part.Shape.importBrepFromString reads).
+std::string face_to_brep(const TopoDS_Face& face);
+
+}  // namespace meshround

@@ -1,0 +1,27 @@
+// Paper §5.2: the round's own facets, made in the surface's (u, v) domain.
+//
+// Rows run along the spine at fixed v. The first and last rows are the trim lines themselves (so the
+// round shares its boundary vertices with the trimmed mesh and no separate stitching is needed); the
+// rows between are spaced in v for the chordal tolerance across the profile and sampled in u on the
+// merged spacing of both trim lines, then refined wherever a facet is farther than the tolerance from
+// the surface. Neighbouring rows are zipped with the shorter diagonal.
+#pragma once
+#include <vector>
+
+#include "meshround/trim.h"
+
+namespace meshround {
+
+struct RoundMeshStats {
+  int facets = 0;
+  int rows = 0;             // rows across the profile, trim lines included
+  double max_deviation = 0; // largest distance found from a new facet (centroid, edge midpoints) to the surface
+};
+
+RoundMeshStats mesh_rounding_surface(const RoundingSurface& surface, const std::vector<ProfileStation>& stations,
+                                     const TrimLines& trim, double tolerance, MeshEdit& edit);
+
+// Spacing across the profile (and the largest step along it) for a tolerance: the v levels' count.
+int profile_segments(const std::vector<ProfileStation>& stations, double tolerance);
+
+}  // namespace meshround

@@ -1,0 +1,142 @@
+// _meshround_core: the engine for Python (numpy in, numpy + BRep text out). See CONTRACT.md.
+#include <pybind11/eigen.h>
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+
+#include <Standard_Failure.hxx>
+
+#include "meshround/round.h"
+
+namespace py = pybind11;
+using namespace meshround;
+
+namespace {
+
+Points to_points(const py::array& a, const char* what) {
+  auto arr = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(a);
+  if (!arr || arr.ndim() != 2 || (arr.shape(1) != 3 && arr.shape(0) > 0))
+    throw RoundingError(std::string(what) + " must be an (n, 3) array of numbers");
+  Points P(arr.shape(0), 3);
+  std::copy(arr.data(), arr.data() + arr.size(), P.data());
+  return P;
+}
+
+Triangles to_triangles(const py::array& a) {
+  auto arr = py::array_t<long long, py::array::c_style | py::array::forcecast>::ensure(a);
+  if (!arr || arr.ndim() != 2 || (arr.shape(1) != 3 && arr.shape(0) > 0))
+    throw RoundingError("triangles must be an (m, 3) array of vertex indices");
+  Triangles F(arr.shape(0), 3);
+  const long long* d = arr.data();
+  for (py::ssize_t i = 0; i < arr.size(); ++i) {
+    if (d[i] < 0 || d[i] > 0x7fffffff) throw RoundingError("a triangle has a negative or too large vertex index");
+    F.data()[i] = int(d[i]);
+  }
+  return F;
+}
+
+std::vector<Vec3> to_vecs(const Points& P) {
+  std::vector<Vec3> out;
+  for (int i = 0; i < P.rows(); ++i) out.push_back(P.row(i).transpose());
+  return out;
+}
+
+py::array_t<double> polyline(const std::vector<Vec3>& pts) {
+  py::array_t<double> a({py::ssize_t(pts.size()), py::ssize_t(3)});
+  auto m = a.mutable_unchecked<2>();
+  for (size_t i = 0; i < pts.size(); ++i)
+    for (int k = 0; k < 3; ++k) m(i, k) = pts[i][k];
+  return a;
+}
+
+// Converts OCCT's own exceptions into RoundingError so Python never sees a crash.
+template <class F>
+auto guarded(F&& f) {
+  try {
+    return f();
+  } catch (const Standard_Failure& e) {
+    throw RoundingError(std::string("geometry kernel failure: ") + e.GetMessageString());
+  }
+}
+
+py::dict round_edges_py(const py::array& vertices, const py::array& triangles, const py::array& seeds, double radius,
+                        double tolerance, double feature_angle, double reach, const py::object& radius_law) {
+  const Points V = to_points(vertices, "vertices");
+  const Triangles F = to_triangles(triangles);
+  const Points S = to_points(seeds, "seeds");
+  RoundOptions opt;
+  opt.radius = radius;
+  opt.tolerance = tolerance;
+  opt.feature_angle_deg = feature_angle;
+  opt.reach = reach;
+  if (!radius_law.is_none()) {
+    auto law = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(radius_law);
+    if (!law || law.ndim() != 2 || law.shape(1) != 4) throw RoundingError("radius_law must be a (p, 4) array of [x, y, z, r]");
+    for (py::ssize_t i = 0; i < law.shape(0); ++i)
+      opt.radius_law.push_back({Vec3(law.at(i, 0), law.at(i, 1), law.at(i, 2)), law.at(i, 3)});
+  }
+  RoundResult res;
+  {
+    py::gil_scoped_release release;
+    res = guarded([&] { return round_edges(V, F, to_vecs(S), opt); });
+  }
+  py::dict out;
+  out["vertices"] = py::array_t<double>(py::cast(res.vertices));
+  out["triangles"] = py::cast(res.triangles);
+  py::list faces, spines, contacts, chains, closed, chain_reports;
+  for (const RoundedChain& c : res.chains) {
+    faces.append(py::bytes(c.brep).attr("decode")("ascii"));
+    spines.append(polyline(c.spine));
+    contacts.append(py::make_tuple(polyline(c.contacts[0]), polyline(c.contacts[1])));
+    chains.append(polyline(c.chain));
+    closed.append(c.report.closed);
+    const ChainReport& r = c.report;
+    py::dict d;
+    d["closed"] = r.closed, d["length"] = r.length, d["stations"] = r.stations;
+    d["facets_removed"] = r.facets_removed, d["facets_cut"] = r.facets_cut, d["facets_added"] = r.facets_added;
+    d["vertices_snapped"] = r.vertices_snapped;
+    d["contacts_on_edges"] = r.contacts_on_edges, d["contacts_on_vertices"] = r.contacts_on_vertices;
+    d["surface_deviation"] = r.surface_deviation, d["mesh_deviation"] = r.mesh_deviation;
+    d["profile_rows"] = r.profile_rows, d["gap_facets"] = r.gap_facets, d["open_gaps"] = r.open_gaps;
+    chain_reports.append(d);
+  }
+  out["faces"] = faces, out["spines"] = spines, out["contacts"] = contacts, out["chains"] = chains, out["closed"] = closed;
+  const RoundReport& r = res.report;
+  py::dict rep;
+  rep["chains"] = int(res.chains.size());
+  rep["facets_removed"] = r.facets_removed, rep["facets_added"] = r.facets_added;
+  rep["max_deviation"] = r.max_deviation, rep["min_new_angle_deg"] = r.min_new_angle_deg;
+  rep["min_input_angle_deg"] = r.min_input_angle_deg;
+  rep["input_forces_small_angles"] = r.input_forces_small_angles;
+  rep["seconds_total"] = r.seconds_total, rep["seconds_per_pass"] = r.seconds;
+  rep["per_chain"] = chain_reports;
+  out["report"] = rep;
+  return out;
+}
+
+py::list trace_chains_py(const py::array& vertices, const py::array& triangles, const py::array& seeds, double feature_angle) {
+  const Points V = to_points(vertices, "vertices");
+  const Triangles F = to_triangles(triangles);
+  const Points S = to_points(seeds, "seeds");
+  py::list out;
+  for (const SharpChain& c : guarded([&] { return find_chains(V, F, to_vecs(S), feature_angle); })) {
+    py::dict d;
+    d["points"] = polyline(c.points);
+    d["closed"] = c.closed;
+    out.append(d);
+  }
+  return out;
+}
+
+}  // namespace
+
+PYBIND11_MODULE(_meshround_core, m) {
+  m.doc() = "MeshRound engine: rolling-ball rounding of sharp-edge chains on triangle meshes";
+  py::register_exception<RoundingError>(m, "RoundingError", PyExc_ValueError);
+  m.def("round_edges", &round_edges_py, py::arg("vertices"), py::arg("triangles"), py::arg("seeds"), py::arg("radius"),
+        py::arg("tolerance") = 0.0, py::arg("feature_angle") = 30.0, py::arg("reach") = 3.0,
+        py::arg("radius_law") = py::none(),
+        "Round the chains of sharp edges the seeds select. See CONTRACT.md for the arrays and the report.");
+  m.def("trace_chains", &trace_chains_py, py::arg("vertices"), py::arg("triangles"), py::arg("seeds"),
+        py::arg("feature_angle") = 30.0, "The sharp-edge chains the seeds select: [{'points': (c, 3), 'closed': bool}].");
+}

@@ -1,0 +1,261 @@
+#include "meshround/chain.h"
+
+#include <algorithm>
+#include <cmath>
+#include <queue>
+
+namespace meshround {
+namespace {
+
+bool is_sharp(const MeshTopology& mesh, int a, int b, double feature_angle_deg) {
+  return mesh.edge_facets(a, b).size() == 2 && mesh.dihedral_deg(a, b) >= feature_angle_deg;
+}
+
+// Distance from p to facet f.
+double facet_distance(const MeshTopology& mesh, int f, const Vec3& p) {
+  return (closest_point_on_triangle(p, mesh.corner(f, 0), mesh.corner(f, 1), mesh.corner(f, 2), nullptr) - p).norm();
+}
+
+// Best-first walk over the facets around the seed until no nearer sharp edge can exist.
+std::pair<int, int> nearest_sharp_edge(const MeshTopology& mesh, const Vec3& seed, double feature_angle_deg,
+                                       double search_radius) {
+  int start = -1;
+  double dstart = INFINITY;
+  for (int f = 0; f < mesh.num_facets(); ++f) {
+    const double d = facet_distance(mesh, f, seed);
+    if (d < dstart) dstart = d, start = f;
+  }
+  using Item = std::pair<double, int>;
+  std::priority_queue<Item, std::vector<Item>, std::greater<Item>> todo;
+  std::unordered_set<int> seen{start};
+  todo.push({dstart, start});
+  double best = INFINITY;
+  std::pair<int, int> edge{-1, -1};
+  while (!todo.empty()) {
+    const auto [d, f] = todo.top();
+    todo.pop();
+    if (d > best || d > search_radius) break;
+    for (int k = 0; k < 3; ++k) {
+      const int a = mesh.F(f, k), b = mesh.F(f, (k + 1) % 3);
+      double t;
+      const double de = (closest_point_on_segment(seed, mesh.point(a), mesh.point(b), &t) - seed).norm();
+      if (de < best && is_sharp(mesh, a, b, feature_angle_deg)) best = de, edge = {a, b};
+      for (const int* g = mesh.facets_begin(a); g != mesh.facets_end(a); ++g)
+        if (seen.insert(*g).second) todo.push({facet_distance(mesh, *g, seed), *g});
+    }
+  }
+  if (edge.first < 0 || best > search_radius)
+    throw RoundingError("no sharp edge (feature angle " + std::to_string(feature_angle_deg) +
+                        " deg) within " + std::to_string(search_radius) + " mm of the seed " + format_point(seed));
+  return edge;
+}
+
+// One step along the chain from `prev` -> `v`: the next vertex, or -1 with the reason it ends.
+int next_chain_vertex(const MeshTopology& mesh, int prev, int v, double feature_angle_deg, ChainEnd* end) {
+  std::vector<int> sharp;
+  for (int w : mesh.vertex_neighbours(v)) {
+    const size_t nf = mesh.edge_facets(v, w).size();
+    if (nf == 1) return *end = ChainEnd::Boundary, -1;
+    if (nf > 2) return *end = ChainEnd::Junction, -1;
+    if (mesh.dihedral_deg(v, w) >= feature_angle_deg) sharp.push_back(w);
+  }
+  if (sharp.size() >= 3) return *end = ChainEnd::Junction, -1;
+  if (sharp.size() < 2) return *end = ChainEnd::Fade, -1;
+  const int w = sharp[0] == prev ? sharp[1] : sharp[0];
+  const Vec3 d0 = (mesh.point(v) - mesh.point(prev)).normalized(), d1 = (mesh.point(w) - mesh.point(v)).normalized();
+  if (std::acos(std::clamp(d0.dot(d1), -1.0, 1.0)) * 180 / M_PI > feature_angle_deg)
+    return *end = ChainEnd::Turn, -1;
+  return w;
+}
+
+// Walk the fan of v from facet f (entered across edge (v, came)) to the facet holding edge (v, target),
+// never crossing a chain edge: that facet is on the same side of the chain as f.
+int same_side_facet(const MeshTopology& mesh, int f, int v, int came, int target) {
+  for (int guard = 0; guard < 4096; ++guard) {
+    int y = -1;
+    for (int k = 0; k < 3; ++k)
+      if (mesh.F(f, k) != v && mesh.F(f, k) != came) y = mesh.F(f, k);
+    if (y == target) return f;
+    const int g = mesh.neighbour(f, v, y);
+    if (g < 0)
+      throw RoundingError("the mesh is open or non-manifold at the chain vertex " + format_point(mesh.point(v)));
+    came = y;
+    f = g;
+  }
+  throw RoundingError("cannot walk around the chain vertex " + format_point(mesh.point(v)));
+}
+
+}  // namespace
+
+SharpChain trace_chain(const MeshTopology& mesh, const Vec3& seed, double feature_angle_deg, double search_radius) {
+  const auto [a, b] = nearest_sharp_edge(mesh, seed, feature_angle_deg, search_radius);
+  SharpChain chain;
+  std::vector<int> forward{a, b};
+  ChainEnd end_fwd = ChainEnd::Fade, end_bwd = ChainEnd::Fade;
+  const size_t limit = size_t(mesh.num_vertices()) + 2;
+  while (forward.size() < limit) {
+    const int w = next_chain_vertex(mesh, forward[forward.size() - 2], forward.back(), feature_angle_deg, &end_fwd);
+    if (w < 0) break;
+    if (w == forward.front()) {
+      chain.closed = true;
+      break;
+    }
+    forward.push_back(w);
+  }
+  std::vector<int> backward;
+  if (!chain.closed) {
+    int prev = b, v = a;
+    while (backward.size() < limit) {
+      const int w = next_chain_vertex(mesh, prev, v, feature_angle_deg, &end_bwd);
+      if (w < 0) break;
+      backward.push_back(w);
+      prev = v, v = w;
+    }
+  }
+  chain.vertices.assign(backward.rbegin(), backward.rend());
+  chain.vertices.insert(chain.vertices.end(), forward.begin(), forward.end());
+  chain.start_end = end_bwd;
+  chain.end_end = end_fwd;
+
+  // Sides: A is one facet of the first edge, then carried around each chain vertex.
+  const int n = int(chain.vertices.size());
+  const int edges = chain.closed ? n : n - 1;
+  auto vtx = [&](int i) { return chain.vertices[(i + n) % n]; };
+  for (int i = 0; i < edges; ++i) {
+    const std::vector<int> fs = mesh.edge_facets(vtx(i), vtx(i + 1));
+    if (fs.size() != 2) throw RoundingError("the chain edge at " + format_point(mesh.point(vtx(i))) + " is not manifold");
+    int fa = fs[0];
+    if (i > 0) fa = same_side_facet(mesh, chain.facet_a[i - 1], vtx(i), vtx(i - 1), vtx(i + 1));
+    chain.facet_a.push_back(fa);
+    chain.facet_b.push_back(fa == fs[0] ? fs[1] : fs[0]);
+  }
+  if (chain.closed && same_side_facet(mesh, chain.facet_a.back(), vtx(0), vtx(-1), vtx(1)) != chain.facet_a[0])
+    throw RoundingError("the closed chain through " + format_point(seed) + " swaps its sides (a one-sided loop)");
+  chain.finish_geometry(mesh);
+  return chain;
+}
+
+void SharpChain::finish_geometry(const MeshTopology& mesh) {
+  const int n = int(vertices.size());
+  points.clear();
+  for (int v : vertices) points.push_back(mesh.point(v));
+  arc_length.assign(n, 0.0);
+  for (int i = 1; i < n; ++i) arc_length[i] = arc_length[i - 1] + (points[i] - points[i - 1]).norm();
+  length = arc_length.back() + (closed ? (points.front() - points.back()).norm() : 0.0);
+  // Vertex tangents: mean of the two segment directions, so that section planes turn smoothly.
+  const int segs = closed ? n : n - 1;
+  std::vector<Vec3> dir(segs);
+  for (int i = 0; i < segs; ++i) dir[i] = (points[(i + 1) % n] - points[i]).normalized();
+  vertex_tangents_.resize(n);
+  for (int i = 0; i < n; ++i) {
+    Vec3 t;
+    if (closed) t = dir[(i - 1 + segs) % segs] + dir[i];
+    else t = (i == 0 ? dir[0] : i == n - 1 ? dir[segs - 1] : Vec3(dir[i - 1] + dir[i]));
+    vertex_tangents_[i] = t.normalized();
+  }
+}
+
+int SharpChain::segment_at(double s, double* local) const {
+  const int n = int(points.size());
+  if (closed) s = s - std::floor(s / length) * length;
+  else s = std::clamp(s, 0.0, length);
+  const int segs = closed ? n : n - 1;
+  int i = int(std::upper_bound(arc_length.begin(), arc_length.end(), s) - arc_length.begin()) - 1;
+  i = std::clamp(i, 0, segs - 1);
+  const double l = (points[(i + 1) % n] - points[i]).norm();
+  *local = l > 0 ? std::clamp((s - arc_length[i]) / l, 0.0, 1.0) : 0.0;
+  return i;
+}
+
+Vec3 SharpChain::point_at(double s) const {
+  double t;
+  const int i = segment_at(s, &t);
+  return (1 - t) * points[i] + t * points[(i + 1) % points.size()];
+}
+
+Vec3 SharpChain::tangent_at(double s) const {
+  double t;
+  const int i = segment_at(s, &t);
+  return ((1 - t) * vertex_tangents_[i] + t * vertex_tangents_[(i + 1) % points.size()]).normalized();
+}
+
+double SharpChain::project(const Vec3& p, double* distance) const {
+  const int n = int(points.size()), segs = closed ? n : n - 1;
+  double best = INFINITY, s_best = 0;
+  for (int i = 0; i < segs; ++i) {
+    double t;
+    const Vec3 q = closest_point_on_segment(p, points[i], points[(i + 1) % n], &t);
+    const double d = (q - p).squaredNorm();
+    if (d < best) best = d, s_best = arc_length[i] + t * (points[(i + 1) % n] - points[i]).norm();
+  }
+  if (distance) *distance = std::sqrt(best);
+  return s_best;
+}
+
+BaseMeshes collect_base_meshes(const MeshTopology& mesh, const SharpChain& chain, double reach_distance,
+                               double feature_angle_deg) {
+  BaseMeshes base;
+  std::unordered_set<std::uint64_t> chain_edges;
+  const int n = int(chain.vertices.size());
+  for (int i = 0; i < chain.num_edges(); ++i) chain_edges.insert(edge_key(chain.vertices[i], chain.vertices[(i + 1) % n]));
+  // Nearness to the chain through a grid of its segments, so the flood costs what the band costs.
+  BoxGrid grid(reach_distance);
+  for (int i = 0; i < chain.num_edges(); ++i) {
+    const Vec3 &p = chain.points[i], &q = chain.points[(i + 1) % n];
+    grid.insert(i, p.cwiseMin(q), p.cwiseMax(q));
+  }
+  std::vector<int> near;
+  auto within_reach = [&](int f) {
+    for (int k = 0; k < 3; ++k) {
+      const Vec3 p = mesh.corner(f, k), r(reach_distance, reach_distance, reach_distance);
+      near.clear();
+      grid.query(p - r, p + r, near);
+      for (int i : near) {
+        double t;
+        if ((closest_point_on_segment(p, chain.points[i], chain.points[(i + 1) % n], &t) - p).norm() <= reach_distance)
+          return true;
+      }
+    }
+    return false;
+  };
+  for (int side = 0; side < 2; ++side) {
+    std::vector<int> todo;
+    for (int f : side == 0 ? chain.facet_a : chain.facet_b) {
+      auto it = base.side_of.find(f);
+      if (it != base.side_of.end() && it->second != side)
+        throw RoundingError("a facet at " + format_point(mesh.corner(f, 0)) + " lies on both sides of the chain");
+      if (it == base.side_of.end()) base.side_of[f] = side, todo.push_back(f), base.facets[side].push_back(f);
+    }
+    while (!todo.empty()) {
+      const int f = todo.back();
+      todo.pop_back();
+      for (int k = 0; k < 3; ++k) {
+        const int a = mesh.F(f, k), b = mesh.F(f, (k + 1) % 3);
+        const std::uint64_t key = edge_key(a, b);
+        if (chain_edges.count(key)) continue;
+        const int g = mesh.neighbour(f, a, b);
+        if (g < 0 || mesh.dihedral_deg(a, b) >= feature_angle_deg) {
+          base.walls[side].insert(key);
+          continue;
+        }
+        auto it = base.side_of.find(g);
+        if (it != base.side_of.end()) {
+          if (it->second != side)
+            throw RoundingError("the two sides of the chain join near " + format_point(mesh.point(a)) +
+                                ": the sharp edges there do not separate two base meshes");
+          continue;
+        }
+        if (!within_reach(g)) {
+          base.reach_limit[side].insert(key);
+          continue;
+        }
+        base.side_of[g] = side;
+        base.facets[side].push_back(g);
+        todo.push_back(g);
+      }
+    }
+  }
+  return base;
+}
+
+}  // namespace meshround

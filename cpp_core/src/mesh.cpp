@@ -1,0 +1,170 @@
+#include "meshround/mesh.h"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+namespace meshround {
+
+std::string format_point(const Vec3& p) {
+  std::ostringstream s;
+  s.precision(6);
+  s << "(" << p.x() << ", " << p.y() << ", " << p.z() << ")";
+  return s.str();
+}
+
+MeshTopology::MeshTopology(const Points& V_, const Triangles& F_) : V(V_), F(F_) {
+  const int n = int(V.rows()), m = int(F.rows());
+  if (n == 0 || m == 0) throw RoundingError("the mesh is empty");
+  if (!V.allFinite()) {
+    for (int i = 0; i < n; ++i)
+      if (!V.row(i).allFinite())
+        throw RoundingError("vertex " + std::to_string(i) + " has a NaN or infinite coordinate");
+  }
+  vf_start_.assign(n + 1, 0);
+  for (int f = 0; f < m; ++f)
+    for (int k = 0; k < 3; ++k) {
+      const int v = F(f, k);
+      if (v < 0 || v >= n)
+        throw RoundingError("facet " + std::to_string(f) + " refers to vertex " + std::to_string(v) +
+                            ", which does not exist");
+      ++vf_start_[v + 1];
+    }
+  for (int v = 0; v < n; ++v) vf_start_[v + 1] += vf_start_[v];
+  vf_.resize(vf_start_[n]);
+  std::vector<int> fill(vf_start_.begin(), vf_start_.end() - 1);
+  for (int f = 0; f < m; ++f)
+    for (int k = 0; k < 3; ++k) vf_[fill[F(f, k)]++] = f;
+}
+
+bool MeshTopology::facet_has_edge(int f, int a, int b) const {
+  bool ha = false, hb = false;
+  for (int k = 0; k < 3; ++k) {
+    ha |= F(f, k) == a;
+    hb |= F(f, k) == b;
+  }
+  return ha && hb;
+}
+
+int MeshTopology::edge_direction(int f, int a, int b) const {
+  for (int k = 0; k < 3; ++k)
+    if (F(f, k) == a) return F(f, (k + 1) % 3) == b ? 1 : -1;
+  return 0;
+}
+
+std::vector<int> MeshTopology::edge_facets(int a, int b) const {
+  std::vector<int> out;
+  for (const int* f = facets_begin(a); f != facets_end(a); ++f)
+    if (facet_has_edge(*f, a, b)) out.push_back(*f);
+  return out;
+}
+
+int MeshTopology::neighbour(int f, int a, int b) const {
+  int other = -1, count = 0;
+  for (const int* g = facets_begin(a); g != facets_end(a); ++g)
+    if (facet_has_edge(*g, a, b)) {
+      ++count;
+      if (*g != f) other = *g;
+    }
+  return count == 2 ? other : -1;
+}
+
+std::vector<int> MeshTopology::vertex_neighbours(int v) const {
+  std::vector<int> out;
+  for (const int* f = facets_begin(v); f != facets_end(v); ++f)
+    for (int k = 0; k < 3; ++k)
+      if (F(*f, k) != v) out.push_back(F(*f, k));
+  std::sort(out.begin(), out.end());
+  out.erase(std::unique(out.begin(), out.end()), out.end());
+  return out;
+}
+
+Vec3 MeshTopology::facet_normal(int f) const {
+  const Vec3 n = (corner(f, 1) - corner(f, 0)).cross(corner(f, 2) - corner(f, 0));
+  const double l = n.norm();
+  return l > 0 ? Vec3(n / l) : Vec3::Zero();
+}
+
+double MeshTopology::dihedral_deg(int a, int b) const {
+  const std::vector<int> fs = edge_facets(a, b);
+  if (fs.size() != 2) return 180.0;
+  Vec3 n0 = facet_normal(fs[0]), n1 = facet_normal(fs[1]);
+  // Consistently oriented neighbours run the shared edge in opposite directions.
+  if (edge_direction(fs[0], a, b) == edge_direction(fs[1], a, b)) n1 = -n1;
+  return std::acos(std::clamp(n0.dot(n1), -1.0, 1.0)) * 180.0 / M_PI;
+}
+
+Vec3 closest_point_on_segment(const Vec3& p, const Vec3& a, const Vec3& b, double* t) {
+  const Vec3 ab = b - a;
+  const double l2 = ab.squaredNorm();
+  double s = l2 > 0 ? std::clamp((p - a).dot(ab) / l2, 0.0, 1.0) : 0.0;
+  if (t) *t = s;
+  return a + s * ab;
+}
+
+// Ericson, Real-Time Collision Detection, 5.1.5.
+Vec3 closest_point_on_triangle(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c, int* region) {
+  int dummy;
+  int& r = region ? *region : dummy;
+  const Vec3 ab = b - a, ac = c - a, ap = p - a;
+  const double d1 = ab.dot(ap), d2 = ac.dot(ap);
+  if (d1 <= 0 && d2 <= 0) return r = 4, a;
+  const Vec3 bp = p - b;
+  const double d3 = ab.dot(bp), d4 = ac.dot(bp);
+  if (d3 >= 0 && d4 <= d3) return r = 5, b;
+  const double vc = d1 * d4 - d3 * d2;
+  if (vc <= 0 && d1 >= 0 && d3 <= 0) return r = 1, a + d1 / (d1 - d3) * ab;
+  const Vec3 cp = p - c;
+  const double d5 = ab.dot(cp), d6 = ac.dot(cp);
+  if (d6 >= 0 && d5 <= d6) return r = 6, c;
+  const double vb = d5 * d2 - d1 * d6;
+  if (vb <= 0 && d2 >= 0 && d6 <= 0) return r = 3, a + d2 / (d2 - d6) * ac;
+  const double va = d3 * d6 - d5 * d4;
+  if (va <= 0 && (d4 - d3) >= 0 && (d5 - d6) >= 0) return r = 2, b + (d4 - d3) / ((d4 - d3) + (d5 - d6)) * (c - b);
+  const double denom = va + vb + vc;
+  if (std::abs(denom) < 1e-300) {  // degenerate triangle: nearest of its three sides
+    double t;
+    Vec3 best = closest_point_on_segment(p, a, b, &t);
+    r = 1;
+    for (auto [q0, q1, reg] : {std::tuple{b, c, 2}, std::tuple{c, a, 3}}) {
+      Vec3 q = closest_point_on_segment(p, q0, q1, &t);
+      if ((q - p).squaredNorm() < (best - p).squaredNorm()) best = q, r = reg;
+    }
+    return best;
+  }
+  r = 0;
+  return a + ab * (vb / denom) + ac * (vc / denom);
+}
+
+std::array<long, 3> BoxGrid::cell_of(const Vec3& p) const {
+  return {long(std::floor(p.x() / cell_)), long(std::floor(p.y() / cell_)), long(std::floor(p.z() / cell_))};
+}
+
+std::uint64_t BoxGrid::key(long i, long j, long k) {
+  return (std::uint64_t(i & 0x1FFFFF) << 42) | (std::uint64_t(j & 0x1FFFFF) << 21) | std::uint64_t(k & 0x1FFFFF);
+}
+
+void BoxGrid::insert(int id, const Vec3& lo, const Vec3& hi) {
+  const auto a = cell_of(lo), b = cell_of(hi);
+  const double span = double(b[0] - a[0] + 1) * double(b[1] - a[1] + 1) * double(b[2] - a[2] + 1);
+  if (span > 4096) {  // a long CAD sliver across a fine grid
+    oversized_.push_back(id);
+    return;
+  }
+  for (long i = a[0]; i <= b[0]; ++i)
+    for (long j = a[1]; j <= b[1]; ++j)
+      for (long k = a[2]; k <= b[2]; ++k) cells_[key(i, j, k)].push_back(id);
+}
+
+void BoxGrid::query(const Vec3& lo, const Vec3& hi, std::vector<int>& out) const {
+  const auto a = cell_of(lo), b = cell_of(hi);
+  out.insert(out.end(), oversized_.begin(), oversized_.end());
+  for (long i = a[0]; i <= b[0]; ++i)
+    for (long j = a[1]; j <= b[1]; ++j)
+      for (long k = a[2]; k <= b[2]; ++k) {
+        auto it = cells_.find(key(i, j, k));
+        if (it != cells_.end()) out.insert(out.end(), it->second.begin(), it->second.end());
+      }
+}
+
+}  // namespace meshround

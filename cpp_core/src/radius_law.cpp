@@ -1,0 +1,74 @@
+#include "meshround/radius_law.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+
+namespace meshround {
+
+RadiusLaw::RadiusLaw(const RoundOptions& options, const SharpChain& chain, double max_distance) {
+  if (options.radius_law.empty()) {
+    if (!(options.radius > 0) || !std::isfinite(options.radius))
+      throw RoundingError("the radius must be a positive number (got " + std::to_string(options.radius) + ")");
+    s_ = {0.0}, r_ = {options.radius}, slope_ = {0.0};
+    return;
+  }
+  std::vector<std::pair<double, double>> pts;
+  for (const RadiusControl& c : options.radius_law) {
+    if (!(c.radius > 0) || !std::isfinite(c.radius))
+      throw RoundingError("the radius control point at " + format_point(c.point) + " has radius " +
+                          std::to_string(c.radius) + "; radii must be positive");
+    double d;
+    const double s = chain.project(c.point, &d);
+    if (!(d <= max_distance))
+      throw RoundingError("the radius control point at " + format_point(c.point) + " is " + std::to_string(d) +
+                          " mm from the chain, farther than the reach (" + std::to_string(max_distance) + " mm)");
+    pts.push_back({s, c.radius});
+  }
+  std::sort(pts.begin(), pts.end());
+  for (const auto& [s, r] : pts) {
+    if (!s_.empty() && s - s_.back() < 1e-9 * std::max(1.0, chain.length)) {
+      if (std::abs(r - r_.back()) > 1e-12) throw RoundingError("two radius control points project to the same place on the chain");
+      continue;
+    }
+    s_.push_back(s), r_.push_back(r);
+  }
+  if (chain.closed && s_.size() > 1) {
+    period_ = chain.length;
+    // Wrap one point on each side so the law is periodic.
+    s_.insert(s_.begin(), s_.back() - period_);
+    r_.insert(r_.begin(), r_.back());
+    s_.push_back(s_[1] + period_);
+    r_.push_back(r_[1]);
+  }
+  const int n = int(s_.size());
+  slope_.assign(n, 0.0);
+  if (n == 2 && !chain.closed) {
+    slope_[0] = slope_[1] = (r_[1] - r_[0]) / (s_[1] - s_[0]);
+  } else if (n >= 3) {  // Fritsch-Carlson monotone slopes
+    std::vector<double> d(n - 1);
+    for (int i = 0; i + 1 < n; ++i) d[i] = (r_[i + 1] - r_[i]) / (s_[i + 1] - s_[i]);
+    for (int i = 1; i + 1 < n; ++i) slope_[i] = d[i - 1] * d[i] <= 0 ? 0.0 : 3 * (s_[i + 1] - s_[i - 1]) /
+        ((2 * s_[i + 1] - s_[i] - s_[i - 1]) / d[i - 1] + (s_[i + 1] + s_[i] - 2 * s_[i - 1]) / d[i]);
+    if (!chain.closed) slope_[0] = slope_[n - 1] = 0.0;
+  }
+}
+
+double RadiusLaw::at(double s) const {
+  const int n = int(s_.size());
+  if (n == 1) return r_[0];
+  if (period_ > 0) s = s_[1] + std::fmod(std::fmod(s - s_[1], period_) + period_, period_);
+  if (s <= s_.front()) return r_.front();
+  if (s >= s_.back()) return r_.back();
+  const int i = int(std::upper_bound(s_.begin(), s_.end(), s) - s_.begin()) - 1;
+  const double h = s_[i + 1] - s_[i], t = (s - s_[i]) / h;
+  if (n == 2 && period_ == 0) return r_[i] + t * (r_[i + 1] - r_[i]);
+  // Cubic Hermite with the monotone slopes.
+  const double h00 = (1 + 2 * t) * (1 - t) * (1 - t), h10 = t * (1 - t) * (1 - t), h01 = t * t * (3 - 2 * t), h11 = t * t * (t - 1);
+  return h00 * r_[i] + h10 * h * slope_[i] + h01 * r_[i + 1] + h11 * h * slope_[i + 1];
+}
+
+double RadiusLaw::min_radius() const { return *std::min_element(r_.begin(), r_.end()); }
+double RadiusLaw::max_radius() const { return *std::max_element(r_.begin(), r_.end()); }
+
+}  // namespace meshround

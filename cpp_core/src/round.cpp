@@ -1,0 +1,211 @@
+#include "meshround/round.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <set>
+
+#include "meshround/radius_law.h"
+#include "meshround/sew.h"
+#include "meshround/tessellate.h"
+
+namespace meshround {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+class PassTimer {
+ public:
+  explicit PassTimer(RoundReport& r) : report_(r), t_(Clock::now()) {}
+  void done(const char* pass) {
+    const auto now = Clock::now();
+    report_.seconds[pass] += std::chrono::duration<double>(now - t_).count();
+    t_ = now;
+  }
+
+ private:
+  RoundReport& report_;
+  Clock::time_point t_;
+};
+
+void validate(const RoundOptions& o) {
+  if (!o.radius_law.empty()) {
+    for (const RadiusControl& c : o.radius_law)
+      if (!c.point.allFinite()) throw RoundingError("a radius control point has a NaN or infinite coordinate");
+  } else if (!(o.radius > 0) || !std::isfinite(o.radius)) {
+    throw RoundingError("the radius must be a positive number (got " + std::to_string(o.radius) + ")");
+  }
+  if (!(o.tolerance >= 0) || !std::isfinite(o.tolerance)) throw RoundingError("the tolerance must be >= 0 (0 = r / 100)");
+  if (!(o.feature_angle_deg > 0 && o.feature_angle_deg < 180))
+    throw RoundingError("the feature angle must lie between 0 and 180 degrees");
+  if (!(o.reach >= 1) || !std::isfinite(o.reach)) throw RoundingError("the reach factor must be at least 1");
+}
+
+// Largest distance between the lofted surface and the exact ball at arc length s (its profile circle).
+double loft_error(const RoundingSurface& surface, const ProfileStation& exact) {
+  double worst = 0;
+  for (int k = 0; k <= 8; ++k) {
+    const Vec3 q = surface.value(exact.s, k / 8.0);
+    worst = std::max(worst, std::abs((q - exact.centre).norm() - exact.radius));
+  }
+  return worst;
+}
+
+// Profiles along the chain: uniform to start with, then wherever the loft strays from the exact ball.
+std::vector<ProfileStation> sample_profiles(const SpineContext& ctx, const RadiusLaw& law, double tolerance,
+                                            RoundingSurface& surface, double* loft_deviation) {
+  const SharpChain& chain = ctx.chain;
+  const double L = chain.length;
+  const int n0 = std::max(chain.closed ? 6 : 4, int(std::ceil(L / (0.5 * law.min_radius()))) + 1);
+  std::vector<ProfileStation> st;
+  for (int i = 0; i < n0; ++i) {
+    const double s = chain.closed ? L * i / n0 : L * i / (n0 - 1);
+    st.push_back(solve_station(ctx, s, law.at(s)));
+  }
+  const double min_step = 1e-4 * L;
+  for (int round = 0; round < 12; ++round) {
+    surface = loft_profiles(st, chain.closed, L);
+    std::vector<ProfileStation> extra;
+    *loft_deviation = 0;
+    const size_t intervals = chain.closed ? st.size() : st.size() - 1;
+    for (size_t i = 0; i < intervals; ++i) {
+      const double a = st[i].s, b = i + 1 < st.size() ? st[i + 1].s : L;
+      if (b - a < min_step) continue;
+      const double s = 0.5 * (a + b);
+      ProfileStation mid = solve_station(ctx, s, law.at(s));
+      const double e = loft_error(surface, mid);
+      *loft_deviation = std::max(*loft_deviation, e);
+      if (e > 0.1 * tolerance) extra.push_back(mid);
+    }
+    if (extra.empty()) break;
+    st.insert(st.end(), extra.begin(), extra.end());
+    std::sort(st.begin(), st.end(), [](const ProfileStation& x, const ProfileStation& y) { return x.s < y.s; });
+  }
+  return st;
+}
+
+double smallest_angle_deg(const Vec3& a, const Vec3& b, const Vec3& c) {
+  auto ang = [](const Vec3& p, const Vec3& q, const Vec3& r) {
+    const Vec3 u = q - p, v = r - p;
+    const double d = u.norm() * v.norm();
+    return d > 0 ? std::acos(std::clamp(u.dot(v) / d, -1.0, 1.0)) * 180 / M_PI : 0.0;
+  };
+  return std::min({ang(a, b, c), ang(b, c, a), ang(c, a, b)});
+}
+
+RoundedChain round_one_chain(const MeshTopology& mesh, const Vec3& seed, const RoundOptions& opt, RoundReport& report,
+                             Points& V_out, Triangles& F_out) {
+  PassTimer timer(report);
+  const double r_max = opt.max_radius();
+  const SharpChain chain = trace_chain(mesh, seed, opt.feature_angle_deg, opt.reach * r_max);
+  const RadiusLaw law(opt, chain, opt.reach * r_max);
+  const double reach = opt.reach * law.max_radius();
+  const BaseMeshes base = collect_base_meshes(mesh, chain, reach, opt.feature_angle_deg);
+  timer.done("chain");
+
+  const double tol = opt.tolerance > 0 ? opt.tolerance : law.max_radius() / 100.0;
+  const BaseDistance dist_a(mesh, base.facets[0], law.max_radius()), dist_b(mesh, base.facets[1], law.max_radius());
+  const SpineContext ctx{mesh, chain, base, {&dist_a, &dist_b}};
+  RoundingSurface surface;
+  RoundedChain out;
+  const std::vector<ProfileStation> stations = sample_profiles(ctx, law, tol, surface, &out.report.surface_deviation);
+  timer.done("surface");
+
+  MeshEdit edit(mesh);
+  const double spacing = 2.5 * law.max_radius() * stations.front().angle() / profile_segments(stations, tol);
+  const TrimLines trim = trim_base_meshes(mesh, chain, base, surface, stations, {tol, std::max(spacing, 1e-6)}, edit);
+  timer.done("trim");
+  const size_t round_begin = edit.added.size();
+  const RoundMeshStats mesh_stats = mesh_rounding_surface(surface, stations, trim, tol, edit);
+  timer.done("tessellate");
+  const SewStats sew = sew_round(edit, round_begin, round_begin + mesh_stats.facets);
+  write_mesh(edit, V_out, F_out);
+  timer.done("sew");
+
+  ChainReport& rep = out.report;
+  rep.closed = chain.closed;
+  rep.length = chain.length;
+  rep.stations = int(stations.size());
+  rep.facets_removed = int(edit.removed.size());
+  rep.facets_cut = trim.facets_cut;
+  rep.facets_added = int(edit.added.size());
+  rep.vertices_snapped = trim.vertices_snapped;
+  rep.mesh_deviation = mesh_stats.max_deviation;
+  rep.profile_rows = mesh_stats.rows;
+  rep.gap_facets = sew.gap_facets;
+  rep.open_gaps = sew.open_gaps;
+  for (const ProfileStation& st : stations) {
+    out.spine.push_back(st.centre);
+    for (int k = 0; k < 2; ++k) {
+      out.contacts[k].push_back(st.contact[k]);
+      rep.contacts_on_edges += st.region[k] == ContactRegion::Edge;
+      rep.contacts_on_vertices += st.region[k] == ContactRegion::Vertex;
+    }
+  }
+  out.chain = chain.points;
+  out.brep = face_to_brep(surface.face);
+
+  report.facets_removed += rep.facets_removed;
+  report.facets_added += rep.facets_added;
+  report.max_deviation = std::max(report.max_deviation, rep.mesh_deviation);
+  for (const auto& f : edit.added)
+    report.min_new_angle_deg = std::min(report.min_new_angle_deg, smallest_angle_deg(edit.point(f[0]), edit.point(f[1]), edit.point(f[2])));
+  for (int f : edit.removed)
+    report.min_input_angle_deg = std::min(report.min_input_angle_deg, smallest_angle_deg(mesh.corner(f, 0), mesh.corner(f, 1), mesh.corner(f, 2)));
+  return out;
+}
+
+}  // namespace
+
+std::vector<SharpChain> find_chains(const Points& V, const Triangles& F, const std::vector<Vec3>& seeds,
+                                    double feature_angle_deg) {
+  const MeshTopology mesh(V, F);
+  std::vector<SharpChain> chains;
+  std::set<std::vector<int>> seen;
+  for (const Vec3& seed : seeds) {
+    if (!seed.allFinite()) throw RoundingError("a seed has a NaN or infinite coordinate");
+    SharpChain c = trace_chain(mesh, seed, feature_angle_deg, INFINITY);
+    std::vector<int> key = c.vertices;
+    std::sort(key.begin(), key.end());
+    if (seen.insert(key).second) chains.push_back(std::move(c));
+  }
+  return chains;
+}
+
+RoundResult round_edges(const Points& V, const Triangles& F, const std::vector<Vec3>& seeds, const RoundOptions& opt) {
+  const auto start = Clock::now();
+  validate(opt);
+  if (seeds.empty()) throw RoundingError("no seed given: pick a point on a sharp edge");
+  RoundResult result;
+  // One seed per distinct chain, found on the input; each chain is then rounded on the latest mesh.
+  std::vector<Vec3> chain_seeds;
+  {
+    const MeshTopology mesh(V, F);
+    std::set<std::vector<int>> seen;
+    for (const Vec3& seed : seeds) {
+      if (!seed.allFinite()) throw RoundingError("a seed has a NaN or infinite coordinate");
+      SharpChain c = trace_chain(mesh, seed, opt.feature_angle_deg, opt.reach * opt.max_radius());
+      std::vector<int> key = c.vertices;
+      std::sort(key.begin(), key.end());
+      if (seen.insert(key).second) chain_seeds.push_back(c.points[c.points.size() / 2]);
+    }
+  }
+  Points cur_V = V;
+  Triangles cur_F = F;
+  for (const Vec3& seed : chain_seeds) {
+    const MeshTopology mesh(cur_V, cur_F);
+    Points next_V;
+    Triangles next_F;
+    result.chains.push_back(round_one_chain(mesh, seed, opt, result.report, next_V, next_F));
+    cur_V.swap(next_V);
+    cur_F.swap(next_F);
+  }
+  result.vertices.swap(cur_V);
+  result.triangles.swap(cur_F);
+  RoundReport& rep = result.report;
+  rep.input_forces_small_angles = rep.min_new_angle_deg < 10 && rep.min_input_angle_deg < 10;
+  rep.seconds_total = std::chrono::duration<double>(Clock::now() - start).count();
+  return result;
+}
+
+}  // namespace meshround

@@ -1,0 +1,124 @@
+#include "meshround/sew.h"
+
+#include <map>
+
+namespace meshround {
+namespace {
+
+// Facets using each undirected edge that the edit touches, counted over the whole edited mesh.
+struct EdgeUse {
+  int count = 0;
+  int a = -1, b = -1;  // direction in one facet that uses it
+};
+
+std::unordered_map<std::uint64_t, EdgeUse> edges_near_edit(const MeshEdit& edit) {
+  const MeshTopology& in = edit.input;
+  std::unordered_map<std::uint64_t, EdgeUse> use;
+  auto add_edges = [&](const std::array<int, 3>& f) {
+    for (int k = 0; k < 3; ++k) {
+      EdgeUse& e = use[edge_key(f[k], f[(k + 1) % 3])];
+      ++e.count, e.a = f[k], e.b = f[(k + 1) % 3];
+    }
+  };
+  for (const auto& f : edit.added) add_edges(f);
+  // Kept input facets around removed ones: their edges may now be open.
+  std::unordered_set<int> ring;
+  for (int f : edit.removed)
+    for (int k = 0; k < 3; ++k)
+      for (const int* g = in.facets_begin(in.F(f, k)); g != in.facets_end(in.F(f, k)); ++g)
+        if (!edit.removed.count(*g)) ring.insert(*g);
+  for (int g : ring) add_edges({in.F(g, 0), in.F(g, 1), in.F(g, 2)});
+  // Input facets outside that ring cannot share an edge with an added facet, but may share one with
+  // a ring facet: count those from the input itself.
+  for (auto& [key, e] : use) {
+    const int a = int(key >> 32), b = int(key & 0xffffffffu);
+    if (a >= in.num_vertices() || b >= in.num_vertices()) continue;
+    for (int g : in.edge_facets(a, b))
+      if (!edit.removed.count(g) && !ring.count(g)) ++e.count;
+  }
+  return use;
+}
+
+}  // namespace
+
+SewStats sew_round(MeshEdit& edit, size_t round_begin, size_t round_end) {
+  SewStats stats;
+  // Orientation: the round runs each shared edge against the trimmed facet next to it.
+  std::unordered_map<std::uint64_t, int> direction;  // directed edge of a non-round facet
+  auto directed = [](int a, int b) { return (std::uint64_t(std::uint32_t(a)) << 32) | std::uint32_t(b); };
+  for (size_t i = 0; i < edit.added.size(); ++i)
+    if (i < round_begin || i >= round_end)
+      for (int k = 0; k < 3; ++k) direction[directed(edit.added[i][k], edit.added[i][(k + 1) % 3])] = 1;
+  int agree = 0, disagree = 0;
+  for (size_t i = round_begin; i < round_end; ++i)
+    for (int k = 0; k < 3; ++k) {
+      const int a = edit.added[i][k], b = edit.added[i][(k + 1) % 3];
+      if (direction.count(directed(a, b))) ++disagree;
+      if (direction.count(directed(b, a))) ++agree;
+    }
+  if (disagree > agree) {
+    stats.round_flipped = true;
+    for (size_t i = round_begin; i < round_end; ++i) std::swap(edit.added[i][1], edit.added[i][2]);
+  }
+
+  // Gaps: loops of edges that are open now but were not open in the input.
+  const MeshTopology& in = edit.input;
+  std::map<int, int> next;  // fill loops run against the open edges' facets
+  for (const auto& [key, e] : edges_near_edit(edit)) {
+    if (e.count != 1) continue;
+    const bool input_edge = e.a < in.num_vertices() && e.b < in.num_vertices();
+    if (input_edge && in.edge_facets(e.a, e.b).size() == 1) continue;  // the input's own boundary
+    next[e.b] = e.a;
+  }
+  while (!next.empty()) {
+    std::vector<int> loop{next.begin()->first};
+    bool closed = false;
+    for (size_t guard = 0; guard <= next.size() + 1; ++guard) {
+      auto it = next.find(loop.back());
+      if (it == next.end()) break;
+      if (it->second == loop.front()) {
+        closed = true;
+        break;
+      }
+      loop.push_back(it->second);
+    }
+    for (int v : loop) next.erase(v);
+    if (!closed || loop.size() < 3) {
+      ++stats.open_gaps;
+      continue;
+    }
+    Vec3 normal = Vec3::Zero();  // Newell's normal of the loop
+    for (size_t i = 0; i < loop.size(); ++i) normal += edit.point(loop[i]).cross(edit.point(loop[(i + 1) % loop.size()]));
+    const size_t before = edit.added.size();
+    triangulate_polygon(edit, loop, normal, edit.added);
+    stats.gap_facets += int(edit.added.size() - before);
+  }
+  return stats;
+}
+
+void write_mesh(const MeshEdit& edit, Points& V, Triangles& F) {
+  const MeshTopology& in = edit.input;
+  const int n_in = in.num_vertices(), n_all = n_in + int(edit.new_points.size());
+  std::vector<int> index(n_all, -1);
+  std::vector<std::array<int, 3>> facets;
+  facets.reserve(in.num_facets() - edit.removed.size() + edit.added.size());
+  for (int f = 0; f < in.num_facets(); ++f)
+    if (!edit.removed.count(f)) facets.push_back({in.F(f, 0), in.F(f, 1), in.F(f, 2)});
+  facets.insert(facets.end(), edit.added.begin(), edit.added.end());
+  for (const auto& f : facets)
+    for (int v : f) index[v] = 0;
+  int n_out = 0;
+  for (int v = 0; v < n_all; ++v)
+    if (index[v] == 0) index[v] = n_out++;
+  V.resize(n_out, 3);
+  for (int v = 0; v < n_all; ++v)
+    if (index[v] >= 0) {
+      if (v < n_in && !edit.moved.count(v)) V.row(index[v]) = in.V.row(v);  // bit for bit
+      else V.row(index[v]) = edit.point(v).transpose();
+    }
+  F.resize(Eigen::Index(facets.size()), 3);
+  for (size_t i = 0; i < facets.size(); ++i)
+    for (int k = 0; k < 3; ++k) F(Eigen::Index(i), k) = index[facets[i][k]];
+}
+
+}  // namespace meshround

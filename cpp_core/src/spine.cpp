@@ -1,0 +1,140 @@
+#include "meshround/spine.h"
+
+#include <Eigen/Dense>
+#include <algorithm>
+#include <cmath>
+
+namespace meshround {
+
+double ProfileStation::angle() const {
+  const Vec3 a = (contact[0] - centre).normalized(), b = (contact[1] - centre).normalized();
+  return std::acos(std::clamp(a.dot(b), -1.0, 1.0));
+}
+
+BaseDistance::BaseDistance(const MeshTopology& mesh, const std::vector<int>& facets, double cell)
+    : mesh_(mesh), facets_(facets), grid_(cell) {
+  for (int i = 0; i < int(facets.size()); ++i) {
+    const int f = facets[i];
+    const Vec3 a = mesh.corner(f, 0), b = mesh.corner(f, 1), c = mesh.corner(f, 2);
+    grid_.insert(i, a.cwiseMin(b).cwiseMin(c), a.cwiseMax(b).cwiseMax(c));
+  }
+}
+
+Vec3 BaseDistance::closest(const Vec3& p, double guess_radius, int* facet, int* region) const {
+  std::vector<int> cand;
+  double h = guess_radius;
+  for (int attempt = 0; attempt < 64; ++attempt, h *= 2) {
+    cand.clear();
+    grid_.query(p - Vec3::Constant(h), p + Vec3::Constant(h), cand);
+    double best = INFINITY;
+    Vec3 q_best = p;
+    for (int i : cand) {
+      const int f = facets_[i];
+      int reg;
+      const Vec3 q = closest_point_on_triangle(p, mesh_.corner(f, 0), mesh_.corner(f, 1), mesh_.corner(f, 2), &reg);
+      const double d = (q - p).squaredNorm();
+      if (d < best) {
+        best = d, q_best = q;
+        if (facet) *facet = f;
+        if (region) *region = reg;
+      }
+    }
+    if (std::sqrt(best) <= h) return q_best;  // nothing outside the searched box can be nearer
+  }
+  throw RoundingError("a base mesh is empty near " + format_point(p));
+}
+
+namespace {
+
+// Unit vector in facet f, perpendicular to the edge direction e, pointing from the edge into f.
+Vec3 into_facet(const MeshTopology& mesh, int f, const Vec3& on_edge, const Vec3& e) {
+  Vec3 best = Vec3::Zero();
+  for (int k = 0; k < 3; ++k) {
+    Vec3 d = mesh.corner(f, k) - on_edge;
+    d -= d.dot(e) * e;
+    if (d.squaredNorm() > best.squaredNorm()) best = d;
+  }
+  return best.normalized();
+}
+
+ContactRegion region_kind(int code) {
+  return code == 0 ? ContactRegion::Facet : code <= 3 ? ContactRegion::Edge : ContactRegion::Vertex;
+}
+
+// The edge of facet f that a closest_point_on_triangle region code names (-1 for facet/vertex).
+std::uint64_t region_edge(const MeshTopology& mesh, int f, int code) {
+  if (code < 1 || code > 3) return ~0ull;
+  return edge_key(mesh.F(f, code - 1), mesh.F(f, code % 3));
+}
+
+}  // namespace
+
+ProfileStation solve_station(const SpineContext& ctx, double s, double r) {
+  const SharpChain& chain = ctx.chain;
+  const Vec3 e = chain.point_at(s), t = chain.tangent_at(s);
+  // Local wedge of the two facets at this chain edge: the start of Newton and the side of the ball.
+  double local;
+  int seg = 0;
+  {
+    const int n = int(chain.points.size());
+    double best = INFINITY;
+    for (int i = 0; i < chain.num_edges(); ++i) {
+      double tt;
+      const double d = (closest_point_on_segment(e, chain.points[i], chain.points[(i + 1) % n], &tt) - e).norm();
+      if (d < best) best = d, seg = i, local = tt;
+    }
+  }
+  const Vec3 dir = (chain.points[(seg + 1) % chain.points.size()] - chain.points[seg]).normalized();
+  const Vec3 dA = into_facet(ctx.mesh, chain.facet_a[seg], e, dir), dB = into_facet(ctx.mesh, chain.facet_b[seg], e, dir);
+  const Vec3 nA = (dB - dB.dot(dA) * dA).normalized(), nB = (dA - dA.dot(dB) * dB).normalized();
+  Eigen::Matrix3d M;
+  M << nA.transpose(), nB.transpose(), t.transpose();
+  if (std::abs(M.determinant()) < 1e-9)
+    throw RoundingError("the edge at " + format_point(e) + " is flat or folded back: no ball fits there");
+  Vec3 c = e + M.inverse() * Vec3(r, r, 0);
+
+  // Newton in the section plane on (dist_A(c) - r, dist_B(c) - r).
+  const Vec3 u1 = (std::abs(t.x()) < 0.9 ? Vec3::UnitX() : Vec3::UnitY()).cross(t).normalized(), u2 = t.cross(u1);
+  ProfileStation st;
+  st.s = s;
+  st.radius = r;
+  int facet[2] = {-1, -1}, code[2] = {0, 0};
+  double residual = INFINITY;
+  for (int iter = 0; iter < 60; ++iter) {
+    Vec3 g[2];
+    double F[2];
+    for (int k = 0; k < 2; ++k) {
+      st.contact[k] = ctx.distance[k]->closest(c, 1.5 * r, &facet[k], &code[k]);
+      const double d = (c - st.contact[k]).norm();
+      g[k] = (c - st.contact[k]) / std::max(d, 1e-300);
+      F[k] = d - r;
+    }
+    residual = std::max(std::abs(F[0]), std::abs(F[1]));
+    if (residual < 1e-11 * std::max(1.0, r)) break;
+    Eigen::Matrix2d J;
+    J << g[0].dot(u1), g[0].dot(u2), g[1].dot(u1), g[1].dot(u2);
+    if (std::abs(J.determinant()) < 1e-12) break;
+    Eigen::Vector2d step = -J.inverse() * Eigen::Vector2d(F[0], F[1]);
+    if (step.norm() > 0.5 * r) step *= 0.5 * r / step.norm();
+    c += step(0) * u1 + step(1) * u2;
+  }
+  st.centre = c;
+  if (residual > 1e-6 * std::max(1.0, r) || (c - e).dot(nA + nB) <= 0)
+    throw RoundingError("no ball of radius " + std::to_string(r) + " touches both base meshes at " + format_point(e) +
+                        ": the radius is too large for the faces there");
+  const bool at_end = !chain.closed && (s <= 1e-9 * chain.length || s >= chain.length * (1 - 1e-9));
+  for (int k = 0; k < 2; ++k) {
+    st.region[k] = region_kind(code[k]);
+    const std::uint64_t wall = region_edge(ctx.mesh, facet[k], code[k]);
+    if (!at_end && ctx.base.walls[k].count(wall))
+      throw RoundingError("radius " + std::to_string(r) + " is too large at " + format_point(e) +
+                          ": the ball would reach past the next sharp edge or the mesh boundary at " +
+                          format_point(st.contact[k]));
+    if (ctx.base.reach_limit[k].count(wall))
+      throw RoundingError("the ball at " + format_point(e) + " touches the base mesh beyond the reach; "
+                          "increase the reach factor");
+  }
+  return st;
+}
+
+}  // namespace meshround

@@ -1,0 +1,125 @@
+#include "meshround/surface.h"
+
+#include <BRepBuilderAPI_MakeFace.hxx>
+#include <BRepTools.hxx>
+#include <GeomAPI_Interpolate.hxx>
+#include <Geom_BSplineCurve.hxx>
+#include <Precision.hxx>
+#include <Standard_Failure.hxx>
+#include <TColStd_Array1OfInteger.hxx>
+#include <TColStd_Array2OfReal.hxx>
+#include <TColStd_HArray1OfReal.hxx>
+#include <TColgp_Array2OfPnt.hxx>
+#include <TColgp_HArray1OfPnt.hxx>
+#include <cmath>
+#include <sstream>
+
+namespace meshround {
+namespace {
+
+gp_Pnt to_pnt(const Vec3& p) { return gp_Pnt(p.x(), p.y(), p.z()); }
+Vec3 to_vec(const gp_XYZ& p) { return Vec3(p.X(), p.Y(), p.Z()); }
+
+// Cubic interpolation of one sequence of points at the given parameters.
+Handle(Geom_BSplineCurve) interpolate(const std::vector<Vec3>& pts, const std::vector<double>& params, bool periodic) {
+  // A periodic interpolation takes one parameter more than points: the junction's (params has it).
+  const int n = int(pts.size());
+  Handle(TColgp_HArray1OfPnt) P = new TColgp_HArray1OfPnt(1, n);
+  Handle(TColStd_HArray1OfReal) U = new TColStd_HArray1OfReal(1, int(params.size()));
+  for (int i = 0; i < n; ++i) P->SetValue(i + 1, to_pnt(pts[i]));
+  for (int i = 0; i < int(params.size()); ++i) U->SetValue(i + 1, params[i]);
+  GeomAPI_Interpolate interp(P, U, periodic, Precision::Confusion());
+  interp.Perform();
+  if (!interp.IsDone()) throw RoundingError("the rounding surface could not be lofted through its profiles");
+  return interp.Curve();
+}
+
+}  // namespace
+
+void profile_arc(const ProfileStation& st, Vec3 poles[3], double weights[3]) {
+  const Vec3 a = st.contact[0] - st.centre, b = st.contact[1] - st.centre;
+  const double half = 0.5 * std::acos(std::clamp(a.normalized().dot(b.normalized()), -1.0, 1.0));
+  poles[0] = st.contact[0];
+  poles[2] = st.contact[1];
+  // The middle pole is where the tangents at both contacts meet.
+  poles[1] = st.centre + (a + b).normalized() * (st.radius / std::cos(half));
+  weights[0] = weights[2] = 1.0;
+  weights[1] = std::cos(half);
+}
+
+RoundingSurface loft_profiles(const std::vector<ProfileStation>& stations, bool closed, double period) {
+  const int n = int(stations.size());
+  if (n < 4) throw RoundingError("too few profiles to loft a rounding surface");
+  std::vector<double> params(n);
+  std::vector<Vec3> rows[3], weight_rows[3];
+  for (int i = 0; i < n; ++i) {
+    Vec3 poles[3];
+    double w[3];
+    profile_arc(stations[i], poles, w);
+    params[i] = stations[i].s;
+    // Interpolating in homogeneous space keeps every station's section an exact circle.
+    // The weight rides in x; y = s only keeps consecutive points apart, as OCCT requires.
+    for (int j = 0; j < 3; ++j) rows[j].push_back(poles[j] * w[j]), weight_rows[j].push_back(Vec3(w[j], params[i], 0));
+  }
+  if (closed) params.push_back(params.front() + period);
+  Handle(Geom_BSplineCurve) cp[3], cw[3];
+  try {
+    for (int j = 0; j < 3; ++j) cp[j] = interpolate(rows[j], params, closed), cw[j] = interpolate(weight_rows[j], params, closed);
+  } catch (const Standard_Failure& e) {
+    throw RoundingError(std::string("lofting the rounding surface failed: ") + e.GetMessageString());
+  }
+  const int nu = cp[0]->NbPoles();
+  TColgp_Array2OfPnt poles(1, nu, 1, 3);
+  TColStd_Array2OfReal weights(1, nu, 1, 3);
+  for (int j = 0; j < 3; ++j) {
+    if (cp[j]->NbPoles() != nu || cw[j]->NbPoles() != nu) throw RoundingError("inconsistent profile lofts");
+    for (int i = 1; i <= nu; ++i) {
+      const double w = cw[j]->Pole(i).X();
+      if (!(w > 1e-9)) throw RoundingError("the rounding surface has a non-positive weight: profiles change too fast");
+      poles(i, j + 1) = gp_Pnt(cp[j]->Pole(i).XYZ() / w);
+      weights(i, j + 1) = w;
+    }
+  }
+  TColStd_Array1OfReal uknots(1, cp[0]->NbKnots()), vknots(1, 2);
+  TColStd_Array1OfInteger umults(1, cp[0]->NbKnots()), vmults(1, 2);
+  cp[0]->Knots(uknots);
+  cp[0]->Multiplicities(umults);
+  vknots(1) = 0, vknots(2) = 1, vmults(1) = vmults(2) = 3;
+
+  RoundingSurface out;
+  out.closed = closed;
+  out.surface = new Geom_BSplineSurface(poles, weights, uknots, vknots, umults, vmults, 3, 2, closed, false);
+  out.u_first = closed ? params.front() : params.front();
+  out.u_last = closed ? params.front() + period : params.back();
+  BRepBuilderAPI_MakeFace mk(out.surface, out.u_first, out.u_last, 0.0, 1.0, Precision::Confusion());
+  if (!mk.IsDone()) throw RoundingError("OCCT could not make a face of the rounding surface");
+  out.face = mk.Face();
+  return out;
+}
+
+double RoundingSurface::wrap(double u) const {
+  if (closed) {
+    const double p = u_last - u_first;
+    return u - std::floor((u - u_first) / p) * p;
+  }
+  return std::clamp(u, u_first, u_last);
+}
+
+Vec3 RoundingSurface::value(double u, double v) const {
+  return to_vec(surface->Value(wrap(u), v).XYZ());
+}
+
+void RoundingSurface::d1(double u, double v, Vec3& p, Vec3& du, Vec3& dv) const {
+  gp_Pnt P;
+  gp_Vec U, V;
+  surface->D1(wrap(u), v, P, U, V);
+  p = to_vec(P.XYZ()), du = to_vec(U.XYZ()), dv = to_vec(V.XYZ());
+}
+
+std::string face_to_brep(const TopoDS_Face& face) {
+  std::ostringstream s;
+  BRepTools::Write(face, s);
+  return s.str();
+}
+
+}  // namespace meshround

@@ -1,0 +1,171 @@
+#include "meshround/tessellate.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace meshround {
+namespace {
+
+struct RowPoint {
+  int id;    // MeshEdit id for trim rows; index into `inner` (negative, -1 - i) for inner rows
+  double u;  // unwrapped along the strip
+  double v;
+};
+
+// v of the point at `fraction` of the profile's angle, on the profile at u (angle measured at the centre).
+double v_at_angle_fraction(const RoundingSurface& s, const ProfileStation& st, double fraction) {
+  const Vec3 a = (st.contact[0] - st.centre).normalized();
+  const double target = fraction * st.angle();
+  double lo = 0, hi = 1;
+  for (int it = 0; it < 60; ++it) {
+    const double mid = 0.5 * (lo + hi);
+    const Vec3 p = (s.value(st.s, mid) - st.centre).normalized();
+    (std::acos(std::clamp(a.dot(p), -1.0, 1.0)) < target ? lo : hi) = mid;
+  }
+  return 0.5 * (lo + hi);
+}
+
+}  // namespace
+
+int profile_segments(const std::vector<ProfileStation>& stations, double tolerance) {
+  int n = 2;
+  for (const ProfileStation& st : stations) {
+    const double step = 2 * std::acos(std::max(0.0, 1 - 0.5 * tolerance / st.radius));  // chord sag <= tol / 2
+    n = std::max(n, int(std::ceil(st.angle() / step)));
+  }
+  return n;
+}
+
+RoundMeshStats mesh_rounding_surface(const RoundingSurface& surface, const std::vector<ProfileStation>& stations,
+                                     const TrimLines& trim, double tolerance, MeshEdit& edit) {
+  const int nv = profile_segments(stations, tolerance);
+  const ProfileStation* widest = &stations.front();
+  double r_max = 0;
+  for (const ProfileStation& st : stations) {
+    if (st.angle() > widest->angle()) widest = &st;
+    r_max = std::max(r_max, st.radius);
+  }
+  std::vector<double> levels(nv + 1);
+  for (int j = 0; j <= nv; ++j) levels[j] = j == 0 ? 0.0 : j == nv ? 1.0 : v_at_angle_fraction(surface, *widest, double(j) / nv);
+  const double h_across = r_max * widest->angle() / nv;
+  const double h_min = 0.4 * h_across, h_max = 2.5 * h_across;
+  const double period = surface.u_last - surface.u_first;
+
+  // Trim rows, unwrapped and closed on themselves for a loop.
+  std::vector<RowPoint> first_row, last_row;
+  for (int side = 0; side < 2; ++side) {
+    auto& row = side == 0 ? first_row : last_row;
+    for (const TrimPoint& tp : trim.line[side]) row.push_back({tp.vertex, tp.u, double(side)});
+    if (row.size() < 2) throw RoundingError("the trim line on side " + std::string(side ? "B" : "A") + " is empty");
+    if (surface.closed) row.push_back({row.front().id, row.front().u + period, double(side)});
+  }
+
+  // u samples of the inner rows: both trim lines merged, thinned, gaps filled.
+  std::vector<double> us;
+  for (const auto* row : {&first_row, &last_row})
+    for (const RowPoint& p : *row) us.push_back(p.u);
+  if (surface.closed) {
+    us.push_back(std::min(first_row.front().u, last_row.front().u));
+    us.push_back(us.back() + period);
+  }
+  std::sort(us.begin(), us.end());
+  const double u_lo = us.front(), u_hi = us.back();
+  std::vector<double> U{u_lo};
+  for (double u : us)
+    if (u - U.back() >= h_min && u_hi - u >= h_min) U.push_back(u);
+  U.push_back(u_hi);
+  auto fill_gaps = [&](std::vector<double>& samples, double h) {
+    std::vector<double> out{samples.front()};
+    for (size_t i = 1; i < samples.size(); ++i) {
+      const int n = std::max(1, int(std::ceil((samples[i] - samples[i - 1]) / h)));
+      for (int k = 1; k <= n; ++k) out.push_back(samples[i - 1] + (samples[i] - samples[i - 1]) * k / n);
+    }
+    samples.swap(out);
+  };
+  fill_gaps(U, h_max);
+
+  std::vector<Vec3> inner;
+  std::vector<std::array<RowPoint, 3>> tris;
+  auto position = [&](const RowPoint& p) { return p.id >= 0 ? edit.point(p.id) : inner[-1 - p.id]; };
+  RoundMeshStats stats;
+  for (int round = 0; round < 8; ++round) {
+    inner.clear();
+    tris.clear();
+    std::vector<std::vector<RowPoint>> rows{first_row};
+    for (int j = 1; j < nv; ++j) {
+      std::vector<RowPoint> row;
+      for (size_t i = 0; i < U.size(); ++i) {
+        if (surface.closed && i + 1 == U.size()) {  // a loop's row ends where it began
+          row.push_back({row.front().id, U[i], levels[j]});
+          break;
+        }
+        inner.push_back(surface.value(U[i], levels[j]));
+        row.push_back({-int(inner.size()), U[i], levels[j]});
+      }
+      rows.push_back(row);
+    }
+    rows.push_back(last_row);
+    // Zip neighbouring rows, always taking the shorter diagonal.
+    for (size_t j = 0; j + 1 < rows.size(); ++j) {
+      const auto &b = rows[j], &t = rows[j + 1];
+      size_t i = 0, k = 0;
+      while (i + 1 < b.size() || k + 1 < t.size()) {
+        bool bottom;
+        if (i + 1 >= b.size()) bottom = false;
+        else if (k + 1 >= t.size()) bottom = true;
+        else bottom = (position(b[i + 1]) - position(t[k])).norm() < (position(b[i]) - position(t[k + 1])).norm();
+        if (bottom) tris.push_back({b[i], b[i + 1], t[k]}), ++i;
+        else tris.push_back({b[i], t[k + 1], t[k]}), ++k;
+      }
+    }
+    // Refine u where a facet strays from the surface.
+    std::vector<std::pair<double, double>> bad;
+    stats.max_deviation = 0;
+    for (const auto& tri : tris) {
+      double worst = 0;
+      for (int e = 0; e < 4; ++e) {  // centroid, then the three edge midpoints
+        const RowPoint* a = &tri[e == 0 ? 0 : e - 1];
+        const RowPoint* b2 = &tri[e == 0 ? 1 : e % 3];
+        Vec3 p;
+        double u, v;
+        if (e == 0) {
+          p = (position(tri[0]) + position(tri[1]) + position(tri[2])) / 3;
+          u = (tri[0].u + tri[1].u + tri[2].u) / 3, v = (tri[0].v + tri[1].v + tri[2].v) / 3;
+        } else {
+          p = 0.5 * (position(*a) + position(*b2));
+          u = 0.5 * (a->u + b2->u), v = 0.5 * (a->v + b2->v);
+        }
+        worst = std::max(worst, (surface.value(u, v) - p).norm());
+      }
+      stats.max_deviation = std::max(stats.max_deviation, worst);
+      if (worst > 0.9 * tolerance)
+        bad.push_back({std::min({tri[0].u, tri[1].u, tri[2].u}), std::max({tri[0].u, tri[1].u, tri[2].u})});
+    }
+    if (bad.empty()) break;
+    std::vector<double> refined{U.front()};
+    for (size_t i = 1; i < U.size(); ++i) {
+      const double a = U[i - 1], b = U[i];
+      const bool split = (b - a) > 1e-3 * h_min &&
+                         std::any_of(bad.begin(), bad.end(), [&](auto& r) { return r.first < b && r.second > a; });
+      if (split) refined.push_back(0.5 * (a + b));
+      refined.push_back(b);
+    }
+    if (refined.size() == U.size()) break;
+    U.swap(refined);
+  }
+
+  // Commit: inner points become mesh vertices, facets follow in (u, v) order (counter-clockwise).
+  std::vector<int> ids(inner.size());
+  for (size_t i = 0; i < inner.size(); ++i) ids[i] = edit.add_point(inner[i]);
+  auto id_of = [&](const RowPoint& p) { return p.id >= 0 ? p.id : ids[-1 - p.id]; };
+  for (const auto& tri : tris) {
+    const std::array<int, 3> f{id_of(tri[0]), id_of(tri[1]), id_of(tri[2])};
+    if (f[0] == f[1] || f[1] == f[2] || f[0] == f[2]) continue;
+    edit.added.push_back(f);
+    ++stats.facets;
+  }
+  stats.rows = nv + 1;
+  return stats;
+}
+
+}  // namespace meshround

@@ -1,0 +1,238 @@
+#include "meshround/trim.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace meshround {
+namespace {
+
+// Signed distance of a point of one base mesh from that side's contact line, in the base surface:
+// negative inside the band. `u` is the line parameter of the foot point.
+struct ContactLineDistance {
+  const RoundingSurface& surface;
+  const SharpChain& chain;
+  int side;  // 0: A (v = 0), 1: B (v = 1)
+
+  double operator()(const Vec3& p, double u_hint, double* u_out, Vec3* away = nullptr) const {
+    const double v = side;
+    double u = std::isnan(u_hint) ? chain.project(p, nullptr) : u_hint;
+    Vec3 C, Cu, Cv;
+    for (int it = 0; it < 30; ++it) {
+      surface.d1(u, v, C, Cu, Cv);
+      const double step = (p - C).dot(Cu) / std::max(Cu.squaredNorm(), 1e-300);
+      const double next = surface.wrap(u + step);
+      const bool done = std::abs(next - u) < 1e-13 * std::max(1.0, chain.length);
+      u = next;
+      if (done) break;
+    }
+    surface.d1(u, v, C, Cu, Cv);
+    // Across the line, in the base surface: the profile's own tangent there, which points into the band
+    // at side A (start of the arc) and out of it at side B (end of the arc).
+    Vec3 tau = Cv - Cv.dot(Cu) / std::max(Cu.squaredNorm(), 1e-300) * Cu;
+    tau.normalize();
+    if (side == 0) tau = -tau;
+    if (u_out) *u_out = u;
+    if (away) *away = tau;
+    return (p - C).dot(tau);
+  }
+};
+
+struct VertexSide {
+  double d;  // signed distance (0 = on the trim line after snapping)
+  double u;
+};
+
+double wrapped_delta(const RoundingSurface& s, double from, double to) {
+  double d = to - from;
+  if (s.closed) {
+    const double p = s.u_last - s.u_first;
+    d -= std::round(d / p) * p;
+  }
+  return d;
+}
+
+// Facets of the end faces that the round cuts into at a capped chain end (convex ends; at a concave end
+// the round adds to the end face and nothing is in the way).
+void remove_cap_corner(const MeshTopology& mesh, const BaseMeshes& base, int corner, const ProfileStation& st,
+                       MeshEdit& edit, int* removed) {
+  const double r = st.radius, eps = 1e-7 * r;
+  const Vec3 a = (st.contact[0] - st.centre).normalized(), b = (st.contact[1] - st.centre).normalized();
+  Eigen::Matrix<double, 3, 2> basis;
+  basis << a, b;
+  const Eigen::Matrix2d gram_inv = (basis.transpose() * basis).inverse();
+  auto in_corner_region = [&](const Vec3& p) {
+    const Vec3 d = p - st.centre;
+    const Eigen::Vector2d ab = gram_inv * (basis.transpose() * d);
+    return ab.x() > eps && ab.y() > eps && d.norm() > r + eps && d.dot(a) < r - eps && d.dot(b) < r - eps;
+  };
+  std::vector<int> todo(mesh.facets_begin(corner), mesh.facets_end(corner));
+  std::unordered_set<int> seen(todo.begin(), todo.end());
+  while (!todo.empty()) {
+    const int f = todo.back();
+    todo.pop_back();
+    if (base.side_of.count(f)) continue;
+    const Vec3 p0 = mesh.corner(f, 0), p1 = mesh.corner(f, 1), p2 = mesh.corner(f, 2), g = (p0 + p1 + p2) / 3;
+    std::vector<Vec3> samples{p0, p1, p2, g, (p0 + p1) / 2, (p1 + p2) / 2, (p2 + p0) / 2};
+    for (int k = 0; k < 3; ++k)
+      if (mesh.F(f, k) == corner) samples.push_back(mesh.point(corner) + 0.02 * (g - mesh.point(corner)));
+    if (std::none_of(samples.begin(), samples.end(), in_corner_region)) continue;
+    if (edit.removed.insert(f).second) ++*removed;
+    for (int k = 0; k < 3; ++k)
+      for (const int* h = mesh.facets_begin(mesh.F(f, k)); h != mesh.facets_end(mesh.F(f, k)); ++h)
+        if (seen.insert(*h).second) todo.push_back(*h);
+  }
+}
+
+}  // namespace
+
+TrimLines trim_base_meshes(const MeshTopology& mesh, const SharpChain& chain, const BaseMeshes& base,
+                           const RoundingSurface& surface, const std::vector<ProfileStation>& end_profiles,
+                           const TrimOptions& opt, MeshEdit& edit) {
+  TrimLines out;
+  const std::unordered_set<int> chain_vertices(chain.vertices.begin(), chain.vertices.end());
+  for (int side = 0; side < 2; ++side) {
+    const ContactLineDistance distance{surface, chain, side};
+    std::unordered_map<int, VertexSide> vs;
+    std::unordered_map<int, double> cut_u;  // cut point -> its line parameter
+    for (int f : base.facets[side])
+      for (int k = 0; k < 3; ++k) {
+        const int v = mesh.F(f, k);
+        if (vs.count(v)) continue;
+        VertexSide s;
+        Vec3 away;
+        s.d = distance(mesh.point(v), NAN, &s.u, &away);
+        if (chain_vertices.count(v)) s.d = std::min(s.d, -1e-9);  // the chain is inside the band by definition
+        // A vertex very near the line moves onto it (when that does not change the surface): no slivers.
+        else if (std::abs(s.d) > 0 && !edit.moved.count(v)) {
+          double shortest = INFINITY;
+          for (int w : mesh.vertex_neighbours(v)) shortest = std::min(shortest, (mesh.point(w) - mesh.point(v)).norm());
+          if (std::abs(s.d) < 0.2 * shortest) {
+            const Vec3 q = mesh.point(v) - s.d * away;
+            bool flat = true;
+            for (const int* g = mesh.facets_begin(v); g != mesh.facets_end(v) && flat; ++g)
+              flat = std::abs((q - mesh.point(v)).dot(mesh.facet_normal(*g))) <= 0.02 * opt.tolerance;
+            if (flat) {
+              edit.moved[v] = q;
+              s.d = 0;
+              ++out.vertices_snapped;
+            }
+          }
+        }
+        vs[v] = s;
+        if (s.d == 0) out.line[side].push_back({v, s.u});
+      }
+
+    // Cut points on the edges that cross the line.
+    auto cut_point = [&](int a, int b) -> int {
+      const std::uint64_t key = edge_key(a, b);
+      auto it = edit.edge_point.find(key);
+      if (it != edit.edge_point.end()) return it->second;
+      if (vs[a].d > 0) std::swap(a, b);  // a inside, b outside
+      const Vec3 pa = edit.point(a), pb = edit.point(b);
+      double t0 = 0, t1 = 1, f0 = vs[a].d, f1 = vs[b].d, u = vs[a].u, t = 0.5;
+      int side_kept = 0;
+      for (int it2 = 0; it2 < 60; ++it2) {  // Illinois regula falsi
+        t = (t0 * f1 - t1 * f0) / (f1 - f0);
+        const double f = distance(pa + t * (pb - pa), u, &u);
+        if (std::abs(f) < 1e-12 * std::max(1.0, surface.u_last) || t1 - t0 < 1e-14) break;
+        if ((f < 0) == (f0 < 0)) {
+          t0 = t, f0 = f;
+          if (side_kept == -1) f1 *= 0.5;
+          side_kept = -1;
+        } else {
+          t1 = t, f1 = f;
+          if (side_kept == 1) f0 *= 0.5;
+          side_kept = 1;
+        }
+      }
+      const int id = edit.add_point(pa + t * (pb - pa));
+      edit.edge_point[key] = id;
+      cut_u[id] = u;
+      out.line[side].push_back({id, u});
+      return id;
+    };
+
+    for (int f : base.facets[side]) {
+      int in = 0, outside = 0;
+      for (int k = 0; k < 3; ++k) (vs[mesh.F(f, k)].d < 0 ? in : outside) += 1;
+      if (in == 0) continue;
+      edit.removed.insert(f);
+      if (outside == 0 || std::all_of(&mesh.F(f, 0), &mesh.F(f, 0) + 3, [&](int v) { return vs[v].d <= 0; })) {
+        ++out.facets_removed;
+        continue;
+      }
+      ++out.facets_cut;
+      // The outer part: kept corners and cut points in order, the trim line between them refined.
+      struct Item { int vertex; double u; bool trim; };
+      std::vector<Item> ring;
+      std::vector<bool> band_before;  // a band corner was skipped just before this item
+      bool skipped = false;
+      for (int k = 0; k < 3; ++k) {
+        const int a = mesh.F(f, k), b = mesh.F(f, (k + 1) % 3);
+        if (vs[a].d >= 0) ring.push_back({a, vs[a].u, vs[a].d == 0}), band_before.push_back(skipped), skipped = false;
+        else skipped = true;
+        if ((vs[a].d < 0 && vs[b].d > 0) || (vs[a].d > 0 && vs[b].d < 0)) {
+          const int x = cut_point(a, b);
+          ring.push_back({x, cut_u.at(x), true}), band_before.push_back(skipped), skipped = false;
+        }
+      }
+      if (skipped && !band_before.empty()) band_before[0] = true;
+      const Vec3 n = mesh.facet_normal(f), p0 = mesh.corner(f, 0);
+      std::vector<int> polygon;
+      for (size_t i = 0; i < ring.size(); ++i) {
+        const Item& prev = ring[(i + ring.size() - 1) % ring.size()];
+        if (band_before[i] && prev.trim && ring[i].trim) {
+          // Extra points where the contact line bends or runs long inside this facet.
+          const Vec3 x1 = edit.point(prev.vertex), x2 = edit.point(ring[i].vertex);
+          const double du = wrapped_delta(surface, prev.u, ring[i].u);
+          auto on_facet = [&](double u) { Vec3 q = surface.value(u, side); return Vec3(q - (q - p0).dot(n) * n); };
+          const Vec3 mid = on_facet(prev.u + 0.5 * du);
+          double t;
+          const double sag = (closest_point_on_segment(mid, x1, x2, &t) - mid).norm();
+          int segs = std::max(1, int(std::ceil((x2 - x1).norm() / opt.max_spacing)));
+          segs = std::max(segs, int(std::ceil(std::sqrt(sag / (0.25 * opt.tolerance)))));
+          for (int s = 1; s < segs; ++s) {
+            const double u = surface.wrap(prev.u + du * s / segs);
+            const int id = edit.add_point(on_facet(u));
+            out.line[side].push_back({id, u});
+            polygon.push_back(id);
+          }
+        }
+        polygon.push_back(ring[i].vertex);
+      }
+      triangulate_polygon(edit, polygon, n, edit.added);
+    }
+  }
+
+  // Capped ends: the corner of the end faces that the round replaces.
+  if (!chain.closed) {
+    if (chain.start_end == ChainEnd::Junction)
+      remove_cap_corner(mesh, base, chain.vertices.front(), end_profiles.front(), edit, &out.facets_removed);
+    if (chain.end_end == ChainEnd::Junction)
+      remove_cap_corner(mesh, base, chain.vertices.back(), end_profiles.back(), edit, &out.facets_removed);
+  }
+  // Facets outside the base meshes that share a cut edge get the cut point too (no T-junctions).
+  for (const auto& [key, id] : edit.edge_point) {
+    const int a = int(key >> 32), b = int(key & 0xffffffffu);
+    for (int g : mesh.edge_facets(a, b)) {
+      if (base.side_of.count(g) || edit.removed.count(g)) continue;
+      edit.removed.insert(g);
+      std::vector<int> polygon;
+      for (int k = 0; k < 3; ++k) {
+        const int p = mesh.F(g, k), q = mesh.F(g, (k + 1) % 3);
+        polygon.push_back(p);
+        auto it = edit.edge_point.find(edge_key(p, q));
+        if (it != edit.edge_point.end()) polygon.push_back(it->second);
+      }
+      triangulate_polygon(edit, polygon, mesh.facet_normal(g), edit.added);
+    }
+  }
+  for (auto& line : out.line) {
+    std::sort(line.begin(), line.end(), [](const TrimPoint& x, const TrimPoint& y) { return x.u < y.u; });
+    line.erase(std::unique(line.begin(), line.end(), [](const TrimPoint& x, const TrimPoint& y) { return x.vertex == y.vertex; }),
+               line.end());
+  }
+  return out;
+}
+
+}  // namespace meshround
