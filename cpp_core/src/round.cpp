@@ -187,7 +187,9 @@ RoundResult round_edges(const Points& V, const Triangles& F, const std::vector<V
       SharpChain c = trace_chain(mesh, seed, opt.feature_angle_deg, opt.reach * opt.max_radius());
       std::vector<int> key = c.vertices;
       std::sort(key.begin(), key.end());
-      if (seen.insert(key).second) chain_seeds.push_back(c.points[c.points.size() / 2]);
+      // The middle of an edge of the chain picks the same chain again, even after other chains are rounded.
+      const size_t i = (c.points.size() - 1) / 2;
+      if (seen.insert(key).second) chain_seeds.push_back(0.5 * (c.points[i] + c.points[(i + 1) % c.points.size()]));
     }
   }
   Points cur_V = V;

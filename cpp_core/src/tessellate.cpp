@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <cstdlib>
 
 namespace meshround {
 namespace {
@@ -60,6 +62,13 @@ RoundMeshStats mesh_rounding_surface(const RoundingSurface& surface, const std::
     if (surface.closed) row.push_back({row.front().id, row.front().u + period, double(side)});
   }
 
+  if (getenv("MESHROUND_DEBUG")) {
+    for (int side = 0; side < 2; ++side) {
+      fprintf(stderr, "row %d:", side);
+      for (const RowPoint& p : side ? last_row : first_row) fprintf(stderr, " %d@%.4f", p.id, p.u);
+      fprintf(stderr, "\n");
+    }
+  }
   // u samples of the inner rows: both trim lines merged, thinned, gaps filled.
   std::vector<double> us;
   for (const auto* row : {&first_row, &last_row})

@@ -1,5 +1,7 @@
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <cstdlib>
 
 #include "meshround/mesh_edit.h"
 
@@ -20,8 +22,10 @@ bool inside_triangle_2d(const Eigen::Vector2d& p, const Eigen::Vector2d& a, cons
   auto cross = [](const Eigen::Vector2d& o, const Eigen::Vector2d& x, const Eigen::Vector2d& y) {
     return (x - o).x() * (y - o).y() - (x - o).y() * (y - o).x();
   };
+  // Points on the ear's sides count as inside: a vertex on the diagonal c-a would be cut off.
+  const double eps = -1e-12 * ((b - a).squaredNorm() + (c - b).squaredNorm() + (a - c).squaredNorm());
   const double d1 = cross(a, b, p), d2 = cross(b, c, p), d3 = cross(c, a, p);
-  return d1 > 0 && d2 > 0 && d3 > 0;
+  return d1 >= eps && d2 >= eps && d3 >= eps;
 }
 
 }  // namespace
@@ -63,7 +67,7 @@ void triangulate_polygon(const MeshEdit& edit, const std::vector<int>& polygon, 
       const int a = idx[(i + m - 1) % m], b = idx[i], c = idx[(i + 1) % m];
       const auto &qa = Q[a], &qb = Q[b], &qc = Q[c];
       const double turn = (qb - qa).x() * (qc - qb).y() - (qb - qa).y() * (qc - qb).x();
-      if (turn <= 0) continue;  // reflex or flat corner: not an ear
+      if (turn <= 1e-9 * (qb - qa).norm() * (qc - qb).norm()) continue;  // reflex or flat corner: not an ear
       bool empty = true;
       for (int j = 0; j < m && empty; ++j) {
         const int w = idx[j];
@@ -76,6 +80,10 @@ void triangulate_polygon(const MeshEdit& edit, const std::vector<int>& polygon, 
     }
     if (best < 0) {
       // Numerically degenerate polygon: cut the flattest corner so the loop still closes.
+      if (getenv("MESHROUND_DEBUG")) {
+        fprintf(stderr, "ear clipping stuck on %d points:\n", m);
+        for (int j = 0; j < m; ++j) fprintf(stderr, "  %d (%g %g %g)\n", ring[idx[j]], P[idx[j]].x(), P[idx[j]].y(), P[idx[j]].z());
+      }
       best = 0;
     }
     emit(idx[(best + m - 1) % m], idx[best], idx[(best + 1) % m]);

@@ -60,11 +60,18 @@ void remove_cap_corner(const MeshTopology& mesh, const BaseMeshes& base, int cor
   Eigen::Matrix<double, 3, 2> basis;
   basis << a, b;
   const Eigen::Matrix2d gram_inv = (basis.transpose() * basis).inverse();
-  auto in_corner_region = [&](const Vec3& p) {
+  const Vec3 plane_normal = a.cross(b).normalized();
+  // R: the corner of the end face between the two faces' traces and the arc. `closed` admits its
+  // boundary too (but not the contacts themselves, which the round keeps).
+  auto in_corner_region = [&](const Vec3& p, bool closed) {
     const Vec3 d = p - st.centre;
+    if (std::abs(d.dot(plane_normal)) > 1e-3 * r) return false;
     const Eigen::Vector2d ab = gram_inv * (basis.transpose() * d);
-    return ab.x() > eps && ab.y() > eps && d.norm() > r + eps && d.dot(a) < r - eps && d.dot(b) < r - eps;
+    const double e = closed ? -eps : eps;
+    if (closed && ((p - st.contact[0]).norm() < 1e-6 * r || (p - st.contact[1]).norm() < 1e-6 * r)) return false;
+    return ab.x() > e && ab.y() > e && d.norm() > r + e && d.dot(a) < r - e && d.dot(b) < r - e;
   };
+  auto strictly_inside = [&](const Vec3& p) { return in_corner_region(p, false); };
   std::vector<int> todo(mesh.facets_begin(corner), mesh.facets_end(corner));
   std::unordered_set<int> seen(todo.begin(), todo.end());
   while (!todo.empty()) {
@@ -72,10 +79,11 @@ void remove_cap_corner(const MeshTopology& mesh, const BaseMeshes& base, int cor
     todo.pop_back();
     if (base.side_of.count(f)) continue;
     const Vec3 p0 = mesh.corner(f, 0), p1 = mesh.corner(f, 1), p2 = mesh.corner(f, 2), g = (p0 + p1 + p2) / 3;
-    std::vector<Vec3> samples{p0, p1, p2, g, (p0 + p1) / 2, (p1 + p2) / 2, (p2 + p0) / 2};
+    std::vector<Vec3> samples{g, (p0 + p1) / 2, (p1 + p2) / 2, (p2 + p0) / 2};
     for (int k = 0; k < 3; ++k)
       if (mesh.F(f, k) == corner) samples.push_back(mesh.point(corner) + 0.02 * (g - mesh.point(corner)));
-    if (std::none_of(samples.begin(), samples.end(), in_corner_region)) continue;
+    const bool vertex_in = in_corner_region(p0, true) || in_corner_region(p1, true) || in_corner_region(p2, true);
+    if (!vertex_in && std::none_of(samples.begin(), samples.end(), strictly_inside)) continue;
     if (edit.removed.insert(f).second) ++*removed;
     for (int k = 0; k < 3; ++k)
       for (const int* h = mesh.facets_begin(mesh.F(f, k)); h != mesh.facets_end(mesh.F(f, k)); ++h)
