@@ -1,0 +1,67 @@
+// One chain rounded on meshes of about 10k, 100k and 1M facets (a box, its top edge, r = 5).
+// The adjacency build is O(n); everything after it should scale with the band, not the mesh.
+// Run: build/bench/meshround_bench
+#include <benchmark/benchmark.h>
+
+#include <cmath>
+#include <map>
+
+#include "meshround/round.h"
+
+using namespace meshround;
+
+namespace {
+
+// A closed box 100 x 60 x 40 of right triangles with about `facets` facets.
+std::pair<Points, Triangles> box_mesh(int facets) {
+  const double area = 2 * (100 * 60 + 100 * 40 + 60 * 40);
+  const double h = std::sqrt(2 * area / facets);
+  std::vector<Vec3> pts;
+  std::vector<std::array<int, 3>> tris;
+  std::map<std::array<long, 3>, int> index;
+  auto vid = [&](const Vec3& p) {
+    std::array<long, 3> k{std::lround(p.x() * 1e6), std::lround(p.y() * 1e6), std::lround(p.z() * 1e6)};
+    auto [it, fresh] = index.emplace(k, int(pts.size()));
+    if (fresh) pts.push_back(p);
+    return it->second;
+  };
+  const Vec3 size(100, 60, 40);
+  for (int axis = 0; axis < 3; ++axis)
+    for (int side = 0; side < 2; ++side) {
+      const int a = (axis + 1) % 3, b = (axis + 2) % 3;
+      const int na = std::max(1, int(std::round(size[a] / h))), nb = std::max(1, int(std::round(size[b] / h)));
+      for (int i = 0; i < na; ++i)
+        for (int j = 0; j < nb; ++j) {
+          Vec3 p[4];
+          for (int c = 0; c < 4; ++c) {
+            p[c][axis] = side * size[axis];
+            p[c][a] = size[a] * (i + (c == 1 || c == 2)) / na;
+            p[c][b] = size[b] * (j + (c >= 2)) / nb;
+          }
+          int q[4] = {vid(p[0]), vid(p[1]), vid(p[2]), vid(p[3])};
+          if (side) std::swap(q[1], q[3]);
+          tris.push_back({q[0], q[1], q[2]}), tris.push_back({q[0], q[2], q[3]});
+        }
+    }
+  Points V(Eigen::Index(pts.size()), 3);
+  for (size_t i = 0; i < pts.size(); ++i) V.row(Eigen::Index(i)) = pts[i].transpose();
+  Triangles F(Eigen::Index(tris.size()), 3);
+  for (size_t i = 0; i < tris.size(); ++i) F.row(Eigen::Index(i)) << tris[i][0], tris[i][1], tris[i][2];
+  return {V, F};
+}
+
+void BM_RoundOneChain(benchmark::State& state) {
+  const auto [V, F] = box_mesh(int(state.range(0)));
+  RoundOptions opt;
+  opt.radius = 5;
+  for (auto _ : state) {
+    RoundResult r = round_edges(V, F, {Vec3(37, 60, 40)}, opt);
+    benchmark::DoNotOptimize(r.triangles.data());
+  }
+  state.counters["facets"] = double(F.rows());
+}
+
+}  // namespace
+
+BENCHMARK(BM_RoundOneChain)->Arg(10000)->Arg(100000)->Arg(1000000)->Unit(benchmark::kMillisecond)->MinTime(0.5);
+BENCHMARK_MAIN();

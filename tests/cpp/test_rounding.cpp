@@ -1,0 +1,145 @@
+// The engine against OCCT's own fillet of the CAD solid that was meshed (BRepFilletAPI_MakeFillet).
+#include <BRepBuilderAPI_MakePolygon.hxx>
+#include <BRepBuilderAPI_MakeFace.hxx>
+#include <BRepPrimAPI_MakeBox.hxx>
+#include <BRepPrimAPI_MakePrism.hxx>
+#include <gtest/gtest.h>
+
+#include "meshround/round.h"
+#include "support.h"
+
+using namespace meshround;
+using namespace meshround::test;
+
+namespace {
+
+struct Case {
+  const char* name;
+  TopoDS_Shape solid;
+  std::function<bool(const Vec3&, const Vec3&)> chain;  // picks the CAD edges to round
+  Vec3 seed;
+  double radius;
+};
+
+Case box_edge() {
+  return {"box", BRepPrimAPI_MakeBox(100, 60, 40).Shape(),
+          [](const Vec3& p, const Vec3& q) { return std::abs(p.y() - 60) + std::abs(q.y() - 60) + std::abs(p.z() - 40) + std::abs(q.z() - 40) < 1e-9; },
+          Vec3(37, 60, 40), 5.0};
+}
+
+Case lchannel_inner_edge() {
+  BRepBuilderAPI_MakePolygon poly;
+  for (auto [y, z] : {std::pair{0., 0.}, {60., 0.}, {60., 10.}, {10., 10.}, {10., 50.}, {0., 50.}}) poly.Add(gp_Pnt(0, y, z));
+  poly.Close();
+  const TopoDS_Shape solid = BRepPrimAPI_MakePrism(BRepBuilderAPI_MakeFace(poly.Wire()).Face(), gp_Vec(100, 0, 0)).Shape();
+  return {"lchannel", solid,
+          [](const Vec3& p, const Vec3& q) { return std::abs(p.y() - 10) + std::abs(q.y() - 10) + std::abs(p.z() - 10) + std::abs(q.z() - 10) < 1e-9; },
+          Vec3(37, 10, 10), 4.0};
+}
+
+struct Measured {
+  double out_to_ref, ref_to_out;
+  Topology topo;
+  int far_vertices_changed;
+  RoundReport report;
+};
+
+Measured round_and_measure(const Case& c, double element) {
+  const TriMesh in = mesh_shape(c.solid, element * c.radius);
+  RoundOptions opt;
+  opt.radius = c.radius;
+  const RoundResult res = round_edges(in.V, in.F, {c.seed}, opt);
+  const TriMesh out{res.vertices, res.triangles};
+  const TopoDS_Shape ref = reference_fillet(c.solid, pick_edges(c.solid, c.chain), c.radius);
+
+  Measured m;
+  m.report = res.report;
+  m.topo = topology(out);
+  // Result -> exact solid, on the points of the result near the chain (every 7th keeps the test quick).
+  std::vector<Vec3> near;
+  const std::vector<Vec3> all = mesh_samples(out);
+  const Vec3 a = res.chains[0].chain.front(), b = res.chains[0].chain.back();
+  auto dist_to_chain = [&](const Vec3& p) {
+    const double t = std::clamp((p - a).dot(b - a) / (b - a).squaredNorm(), 0.0, 1.0);
+    return (a + t * (b - a) - p).norm();
+  };
+  for (size_t i = 0; i < all.size(); ++i)
+    if (dist_to_chain(all[i]) < 2 * c.radius && (i % 7 == 0 || dist_to_chain(all[i]) < 1.2 * c.radius)) near.push_back(all[i]);
+  m.out_to_ref = max_distance_to_shape(near, ref);
+  m.ref_to_out = max_distance_to_mesh(fillet_face_samples(ref, c.solid, 24), out);
+  // Locality: input vertices beyond reach * r (plus an element) are in the output unchanged.
+  std::set<std::array<double, 3>> out_points;
+  for (int i = 0; i < out.V.rows(); ++i) out_points.insert({out.V(i, 0), out.V(i, 1), out.V(i, 2)});
+  m.far_vertices_changed = 0;
+  for (int i = 0; i < in.V.rows(); ++i) {
+    const Vec3 p = in.V.row(i).transpose();
+    if (dist_to_chain(p) > 3 * c.radius + element * c.radius && !out_points.count({p.x(), p.y(), p.z()})) ++m.far_vertices_changed;
+  }
+  return m;
+}
+
+void expect_exact_and_clean(const Case& c, double element) {
+  SCOPED_TRACE(std::string(c.name) + " element " + std::to_string(element) + " r");
+  const Measured m = round_and_measure(c, element);
+  const double tol = c.radius / 100;
+  EXPECT_LE(m.out_to_ref, tol);
+  EXPECT_LE(m.ref_to_out, tol);
+  EXPECT_EQ(m.topo.boundary, 0);
+  EXPECT_EQ(m.topo.nonmanifold, 0);
+  EXPECT_EQ(m.topo.misoriented, 0);
+  EXPECT_EQ(m.topo.degenerate, 0);
+  EXPECT_EQ(m.far_vertices_changed, 0);
+  EXPECT_LE(m.report.max_deviation, tol);
+}
+
+}  // namespace
+
+TEST(Rounding, ConvexBoxEdgeMatchesOcctFillet) {
+  for (double element : {0.4, 2.5, 0.0}) expect_exact_and_clean(box_edge(), element);
+}
+
+TEST(Rounding, ConcaveChannelEdgeMatchesOcctFillet) {
+  for (double element : {0.4, 2.5, 0.0}) expect_exact_and_clean(lchannel_inner_edge(), element);
+}
+
+TEST(Rounding, SurfaceSectionsAreExactCircles) {
+  const Case c = box_edge();
+  const TriMesh in = mesh_shape(c.solid, 2.0);
+  RoundOptions opt;
+  opt.radius = c.radius;
+  const RoundResult res = round_edges(in.V, in.F, {c.seed}, opt);
+  ASSERT_EQ(res.chains.size(), 1u);
+  const RoundedChain& ch = res.chains[0];
+  for (size_t i = 0; i < ch.spine.size(); ++i) {
+    EXPECT_NEAR((ch.contacts[0][i] - ch.spine[i]).norm(), c.radius, 1e-9);
+    EXPECT_NEAR((ch.contacts[1][i] - ch.spine[i]).norm(), c.radius, 1e-9);
+  }
+  EXPECT_LT(ch.report.surface_deviation, c.radius / 1000);
+  EXPECT_NE(ch.brep.find("Surfaces"), std::string::npos);
+}
+
+TEST(BadInput, ClearErrorsNamingTheCause) {
+  const Case c = box_edge();
+  const TriMesh in = mesh_shape(c.solid, 0.0);
+  RoundOptions opt;
+  opt.radius = c.radius;
+  auto message = [&](const Points& V, const Triangles& F, const Vec3& seed, const RoundOptions& o) {
+    try {
+      round_edges(V, F, {seed}, o);
+    } catch (const RoundingError& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  EXPECT_NE(message(in.V, in.F, Vec3(50, 30, 100), opt).find("no sharp edge"), std::string::npos);
+  RoundOptions big = opt;
+  big.radius = 45;  // wider than the 40 mm side face
+  EXPECT_NE(message(in.V, in.F, c.seed, big).find("too large"), std::string::npos);
+  RoundOptions zero = opt;
+  zero.radius = 0;
+  EXPECT_NE(message(in.V, in.F, c.seed, zero).find("positive"), std::string::npos);
+  Points nan = in.V;
+  nan(0, 0) = NAN;
+  EXPECT_NE(message(nan, in.F, c.seed, opt).find("NaN"), std::string::npos);
+  EXPECT_NE(message(Points(0, 3), Triangles(0, 3), c.seed, opt).find("empty"), std::string::npos);
+}

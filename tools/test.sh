@@ -1,0 +1,10 @@
+#!/usr/bin/env bash
+# The whole test suite: C++ unit tests (GoogleTest via ctest), then the Python tests (engine through
+# Python, FreeCAD headless, the CLI) and the GUI tests (real FreeCAD under Xvfb), all with pytest.
+# Exits non-zero on any failure.
+set -euo pipefail
+ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+"$ROOT/tools/setup.sh"
+cd "$ROOT"
+ctest --test-dir build --output-on-failure -j2
+/usr/bin/python3 -m pytest -q -p no:cacheprovider tests/python tests/gui
