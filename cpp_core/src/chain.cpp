@@ -22,6 +22,9 @@ std::pair<int, int> nearest_sharp_edge(const MeshTopology& mesh, const Vec3& see
   int start = -1;
   double dstart = INFINITY;
   for (int f = 0; f < mesh.num_facets(); ++f) {
+    const Vec3 a = mesh.corner(f, 0), b = mesh.corner(f, 1), c = mesh.corner(f, 2);
+    const Vec3 gap = (a.cwiseMin(b).cwiseMin(c) - seed).cwiseMax(seed - a.cwiseMax(b).cwiseMax(c)).cwiseMax(0.0);
+    if (gap.squaredNorm() >= dstart * dstart) continue;  // its bounding box is already farther
     const double d = facet_distance(mesh, f, seed);
     if (d < dstart) dstart = d, start = f;
   }
@@ -179,15 +182,34 @@ Vec3 SharpChain::tangent_at(double s) const {
   return ((1 - t) * vertex_tangents_[i] + t * vertex_tangents_[(i + 1) % points.size()]).normalized();
 }
 
+void SharpChain::index_segments(double cell) {
+  const int n = int(points.size());
+  cell_ = cell;
+  segments_ = std::make_shared<BoxGrid>(cell);
+  for (int i = 0; i < num_edges(); ++i)
+    segments_->insert(i, points[i].cwiseMin(points[(i + 1) % n]), points[i].cwiseMax(points[(i + 1) % n]));
+}
+
 double SharpChain::project(const Vec3& p, double* distance) const {
   const int n = int(points.size()), segs = closed ? n : n - 1;
   double best = INFINITY, s_best = 0;
-  for (int i = 0; i < segs; ++i) {
+  auto consider = [&](int i) {
     double t;
     const Vec3 q = closest_point_on_segment(p, points[i], points[(i + 1) % n], &t);
     const double d = (q - p).squaredNorm();
     if (d < best) best = d, s_best = arc_length[i] + t * (points[(i + 1) % n] - points[i]).norm();
+  };
+  if (segments_) {
+    std::vector<int> cand;
+    for (double h = 0.5 * cell_; h < 1e3 * cell_ && best == INFINITY; h *= 4) {
+      cand.clear();
+      segments_->query(p - Vec3::Constant(h), p + Vec3::Constant(h), cand);
+      for (int i : cand) consider(i);
+      if (std::sqrt(best) > h) best = INFINITY;  // something outside the box may be nearer: look wider
+    }
   }
+  if (best == INFINITY)
+    for (int i = 0; i < segs; ++i) consider(i);
   if (distance) *distance = std::sqrt(best);
   return s_best;
 }

@@ -97,7 +97,8 @@ RoundedChain round_one_chain(const MeshTopology& mesh, const Vec3& seed, const R
                              Points& V_out, Triangles& F_out) {
   PassTimer timer(report);
   const double r_max = opt.max_radius();
-  const SharpChain chain = trace_chain(mesh, seed, opt.feature_angle_deg, opt.reach * r_max);
+  SharpChain chain = trace_chain(mesh, seed, opt.feature_angle_deg, opt.reach * r_max);
+  chain.index_segments(r_max);
   const RadiusLaw law(opt, chain, opt.reach * r_max);
   const double reach = opt.reach * law.max_radius();
   const BaseMeshes base = collect_base_meshes(mesh, chain, reach, opt.feature_angle_deg);
@@ -179,26 +180,28 @@ RoundResult round_edges(const Points& V, const Triangles& F, const std::vector<V
   RoundResult result;
   // One seed per distinct chain, found on the input; each chain is then rounded on the latest mesh.
   std::vector<Vec3> chain_seeds;
-  {
-    const MeshTopology mesh(V, F);
-    std::set<std::vector<int>> seen;
-    for (const Vec3& seed : seeds) {
-      if (!seed.allFinite()) throw RoundingError("a seed has a NaN or infinite coordinate");
-      SharpChain c = trace_chain(mesh, seed, opt.feature_angle_deg, opt.reach * opt.max_radius());
-      std::vector<int> key = c.vertices;
-      std::sort(key.begin(), key.end());
-      // The middle of an edge of the chain picks the same chain again, even after other chains are rounded.
-      const size_t i = (c.points.size() - 1) / 2;
-      if (seen.insert(key).second) chain_seeds.push_back(0.5 * (c.points[i] + c.points[(i + 1) % c.points.size()]));
-    }
+  const MeshTopology input(V, F);
+  std::set<std::vector<int>> seen;
+  for (const Vec3& seed : seeds) {
+    if (!seed.allFinite()) throw RoundingError("a seed has a NaN or infinite coordinate");
+    SharpChain c = trace_chain(input, seed, opt.feature_angle_deg, opt.reach * opt.max_radius());
+    std::vector<int> key = c.vertices;
+    std::sort(key.begin(), key.end());
+    // The middle of an edge of the chain picks the same chain again, even after other chains are rounded.
+    const size_t i = (c.points.size() - 1) / 2;
+    if (seen.insert(key).second) chain_seeds.push_back(0.5 * (c.points[i] + c.points[(i + 1) % c.points.size()]));
   }
-  Points cur_V = V;
-  Triangles cur_F = F;
-  for (const Vec3& seed : chain_seeds) {
-    const MeshTopology mesh(cur_V, cur_F);
+  Points cur_V;
+  Triangles cur_F;
+  for (size_t k = 0; k < chain_seeds.size(); ++k) {
     Points next_V;
     Triangles next_F;
-    result.chains.push_back(round_one_chain(mesh, seed, opt, result.report, next_V, next_F));
+    if (k == 0) {
+      result.chains.push_back(round_one_chain(input, chain_seeds[k], opt, result.report, next_V, next_F));
+    } else {
+      const MeshTopology mesh(cur_V, cur_F);
+      result.chains.push_back(round_one_chain(mesh, chain_seeds[k], opt, result.report, next_V, next_F));
+    }
     cur_V.swap(next_V);
     cur_F.swap(next_F);
   }

@@ -100,10 +100,12 @@ void write_mesh(const MeshEdit& edit, Points& V, Triangles& F) {
   const MeshTopology& in = edit.input;
   const int n_in = in.num_vertices(), n_all = n_in + int(edit.new_points.size());
   std::vector<int> index(n_all, -1);
+  std::vector<char> removed(in.num_facets(), 0);
+  for (int f : edit.removed) removed[f] = 1;
   std::vector<std::array<int, 3>> facets;
   facets.reserve(in.num_facets() - edit.removed.size() + edit.added.size());
   for (int f = 0; f < in.num_facets(); ++f)
-    if (!edit.removed.count(f)) facets.push_back({in.F(f, 0), in.F(f, 1), in.F(f, 2)});
+    if (!removed[f]) facets.push_back({in.F(f, 0), in.F(f, 1), in.F(f, 2)});
   facets.insert(facets.end(), edit.added.begin(), edit.added.end());
   for (const auto& f : facets)
     for (int v : f) index[v] = 0;

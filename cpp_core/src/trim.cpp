@@ -37,6 +37,8 @@ struct ContactLineDistance {
   }
 };
 
+constexpr double kFar = 1e30;  // signed distance of a vertex too far from the chain to be cut
+
 struct VertexSide {
   double d;  // signed distance (0 = on the trim line after snapping)
   double u;
@@ -97,18 +99,34 @@ TrimLines trim_base_meshes(const MeshTopology& mesh, const SharpChain& chain, co
                            const RoundingSurface& surface, const std::vector<ProfileStation>& end_profiles,
                            const TrimOptions& opt, MeshEdit& edit) {
   TrimLines out;
+  // How far from the chain each contact line gets, with room to spare: beyond it nothing is cut.
+  double band_reach[2] = {0, 0};
+  for (const ProfileStation& st : end_profiles)
+    for (int k = 0; k < 2; ++k)
+      band_reach[k] = std::max(band_reach[k], 1.5 * (st.contact[k] - chain.point_at(st.s)).norm() + st.radius);
   const std::unordered_set<int> chain_vertices(chain.vertices.begin(), chain.vertices.end());
   for (int side = 0; side < 2; ++side) {
     const ContactLineDistance distance{surface, chain, side};
     std::unordered_map<int, VertexSide> vs;
     std::unordered_map<int, double> cut_u;  // cut point -> its line parameter
+    auto exact = [&](int v) -> VertexSide& {  // a far vertex's true distance, when a cut needs it
+      VertexSide& s = vs[v];
+      if (s.d == kFar) s.d = distance(edit.point(v), s.u, &s.u);
+      return s;
+    };
     for (int f : base.facets[side])
       for (int k = 0; k < 3; ++k) {
         const int v = mesh.F(f, k);
         if (vs.count(v)) continue;
         VertexSide s;
         Vec3 away;
-        s.d = distance(mesh.point(v), NAN, &s.u, &away);
+        double from_chain;
+        const double s_chain = chain.project(mesh.point(v), &from_chain);
+        if (from_chain > band_reach[side]) {  // clearly outside the band: skip the exact projection
+          vs[v] = {kFar, s_chain};
+          continue;
+        }
+        s.d = distance(mesh.point(v), s_chain, &s.u, &away);
         if (chain_vertices.count(v)) s.d = std::min(s.d, -1e-9);  // the chain is inside the band by definition
         // A vertex very near the line moves onto it (when that does not change the surface): no slivers.
         else if (std::abs(s.d) > 0 && !edit.moved.count(v)) {
@@ -137,7 +155,7 @@ TrimLines trim_base_meshes(const MeshTopology& mesh, const SharpChain& chain, co
       if (it != edit.edge_point.end()) return it->second;
       if (vs[a].d > 0) std::swap(a, b);  // a inside, b outside
       const Vec3 pa = edit.point(a), pb = edit.point(b);
-      double t0 = 0, t1 = 1, f0 = vs[a].d, f1 = vs[b].d, u = vs[a].u, t = 0.5;
+      double t0 = 0, t1 = 1, f0 = exact(a).d, f1 = exact(b).d, u = vs[a].u, t = 0.5;
       int side_kept = 0;
       for (int it2 = 0; it2 < 60; ++it2) {  // Illinois regula falsi
         t = (t0 * f1 - t1 * f0) / (f1 - f0);

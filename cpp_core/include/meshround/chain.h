@@ -1,5 +1,6 @@
 // Paper §3: the chain of sharp edges a seed selects, and the two base meshes on either side of it.
 #pragma once
+#include <memory>
 #include <unordered_map>
 #include <unordered_set>
 #include <vector>
@@ -32,14 +33,19 @@ struct SharpChain {
   // Point and smoothed unit tangent at arc length s (wrapped for a loop, clamped otherwise).
   Vec3 point_at(double s) const;
   Vec3 tangent_at(double s) const;
-  // Arc length of the chain point nearest to p, and the distance to it.
+  // Arc length of the chain point nearest to p, and the distance to it (a grid of the segments keeps
+  // this local; see index_segments).
   double project(const Vec3& p, double* distance) const;
+  // Builds the segment grid used by project(); cell ~ the distances queried (e.g. the radius).
+  void index_segments(double cell);
 
  private:
   friend SharpChain trace_chain(const MeshTopology&, const Vec3&, double, double);
   void finish_geometry(const MeshTopology& mesh);
   int segment_at(double s, double* local) const;
   std::vector<Vec3> vertex_tangents_;
+  std::shared_ptr<BoxGrid> segments_;
+  double cell_ = 0;
 };
 
 // The sharp edge nearest to `seed` (within `search_radius`) and the whole chain through it.
