@@ -114,12 +114,13 @@ py::dict round_edges_py(const py::array& vertices, const py::array& triangles, c
   return out;
 }
 
-py::list trace_chains_py(const py::array& vertices, const py::array& triangles, const py::array& seeds, double feature_angle) {
+py::list trace_chains_py(const py::array& vertices, const py::array& triangles, const py::array& seeds, double feature_angle,
+                         double search_radius) {
   const Points V = to_points(vertices, "vertices");
   const Triangles F = to_triangles(triangles);
   const Points S = to_points(seeds, "seeds");
   py::list out;
-  for (const SharpChain& c : guarded([&] { return find_chains(V, F, to_vecs(S), feature_angle); })) {
+  for (const SharpChain& c : guarded([&] { return find_chains(V, F, to_vecs(S), feature_angle, search_radius); })) {
     py::dict d;
     d["points"] = polyline(c.points);
     d["closed"] = c.closed;
@@ -138,5 +139,5 @@ PYBIND11_MODULE(_meshround_core, m) {
         py::arg("radius_law") = py::none(),
         "Round the chains of sharp edges the seeds select. See CONTRACT.md for the arrays and the report.");
   m.def("trace_chains", &trace_chains_py, py::arg("vertices"), py::arg("triangles"), py::arg("seeds"),
-        py::arg("feature_angle") = 30.0, "The sharp-edge chains the seeds select: [{'points': (c, 3), 'closed': bool}].");
+        py::arg("feature_angle") = 30.0, py::arg("search_radius") = 0.0, "The sharp-edge chains the seeds select: [{'points': (c, 3), 'closed': bool}].");
 }

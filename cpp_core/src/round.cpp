@@ -159,13 +159,14 @@ RoundedChain round_one_chain(const MeshTopology& mesh, const Vec3& seed, const R
 }  // namespace
 
 std::vector<SharpChain> find_chains(const Points& V, const Triangles& F, const std::vector<Vec3>& seeds,
-                                    double feature_angle_deg) {
+                                    double feature_angle_deg, double search_radius) {
   const MeshTopology mesh(V, F);
+  if (!(search_radius > 0)) search_radius = 0.05 * (V.colwise().maxCoeff() - V.colwise().minCoeff()).norm();
   std::vector<SharpChain> chains;
   std::set<std::vector<int>> seen;
   for (const Vec3& seed : seeds) {
     if (!seed.allFinite()) throw RoundingError("a seed has a NaN or infinite coordinate");
-    SharpChain c = trace_chain(mesh, seed, feature_angle_deg, INFINITY);
+    SharpChain c = trace_chain(mesh, seed, feature_angle_deg, search_radius);
     std::vector<int> key = c.vertices;
     std::sort(key.begin(), key.end());
     if (seen.insert(key).second) chains.push_back(std::move(c));

@@ -54,8 +54,9 @@ struct RoundResult {
 
 RoundResult round_edges(const Points& V, const Triangles& F, const std::vector<Vec3>& seeds, const RoundOptions& options);
 
-// The chains the seeds select (for highlighting a pick); one per distinct chain.
+// The chains the seeds select (for highlighting a pick); one per distinct chain. A seed farther than
+// search_radius from every sharp edge is an error; <= 0 means 5% of the mesh's bounding-box diagonal.
 std::vector<SharpChain> find_chains(const Points& V, const Triangles& F, const std::vector<Vec3>& seeds,
-                                    double feature_angle_deg);
+                                    double feature_angle_deg, double search_radius = 0);
 
 }  // namespace meshround

@@ -1,0 +1,37 @@
+"""MeshRound: round sharp edges of triangle meshes with a rolling ball.
+
+    import MeshRound
+    res = MeshRound.round_edges(mesh, seeds, radius)              # console API -> RoundingResult
+    obj = MeshRound.make_rounding(base_feature, seeds, radius)    # parametric Mesh feature "Rounding"
+    wires = MeshRound.trace_chains(mesh, seeds)                   # the chains seeds select
+
+Outside FreeCAD, put /usr/lib/freecad-python3/lib and <repo>/Mod/MeshRound on sys.path first.
+
+The names are loaded on first use (PEP 562), so importing the package costs nothing and needs no
+FreeCAD: the workbench registration and `python3 -m MeshRound.cli` (which finds FreeCAD itself) rely on it.
+"""
+import importlib
+
+__version__ = "0.1.0"
+
+# public name -> submodule defining it
+_EXPORTS = {
+    "round_edges": "api",
+    "trace_chains": "api",
+    "RoundingResult": "api",
+    "RoundingError": "errors",
+    "make_rounding": "objects.rounding",
+}
+__all__ = list(_EXPORTS)
+
+
+def __getattr__(name):
+    if name not in _EXPORTS:
+        raise AttributeError(f"module 'MeshRound' has no attribute {name!r}")
+    value = getattr(importlib.import_module(f".{_EXPORTS[name]}", __name__), name)
+    globals()[name] = value  # later look-ups skip this function
+    return value
+
+
+def __dir__():
+    return sorted(set(globals()) | set(_EXPORTS))

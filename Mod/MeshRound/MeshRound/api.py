@@ -1,0 +1,154 @@
+"""The console API: round sharp edge chains of a Mesh.Mesh with a rolling ball.
+
+    import MeshRound
+    res = MeshRound.round_edges(mesh, seeds, radius, tolerance=None, feature_angle=30.0, reach=3.0)
+    res.mesh, res.surfaces, res.spines, res.chains, res.contacts, res.report
+
+This module is the only user of the compiled engine.  It validates in Python first (so every bad input is
+a RoundingError with a clear message), converts the mesh to arrays once, calls the engine, and turns its
+plain outputs into FreeCAD objects.  The *_arrays variants skip the mesh conversion for callers that keep
+the arrays (the task panel traces a chain on every pick).
+"""
+import dataclasses
+import math
+import time
+
+import numpy as np
+
+import Mesh  # noqa: F401  (FreeCAD's Mesh module must be loaded before meshconv uses it)
+
+from . import inputs, meshconv, shapes
+from .errors import RoundingError, require_core
+
+__all__ = ["RoundingError", "RoundingResult", "round_edges", "round_arrays", "trace_chains",
+           "trace_arrays"]
+
+
+@dataclasses.dataclass
+class RoundingResult:
+    """What one rounding produced; `mesh` is new, the input mesh is never modified."""
+    mesh: object        # Mesh.Mesh: the rounded mesh
+    surfaces: list      # Part.Face on a Part.BSplineSurface: the exact rolling-ball surface, per chain
+    spines: list        # Part.Wire: the ball-centre path, per chain
+    chains: list        # Part.Wire: the sharp-edge chains that were rounded
+    contacts: list      # Part.Wire: the ball's contact lines, two per chain (side A, side B)
+    report: dict        # JSON-ready numbers: chains, facets_removed, facets_added, max_deviation, ...
+
+    def __repr__(self):
+        r = self.report
+        return (f"<RoundingResult: {r.get('chains')} chain(s), {r.get('facets_in')} -> "
+                f"{r.get('facets_out')} facets, {r.get('seconds', 0.0):.3f} s>")
+
+
+def round_edges(mesh, seeds, radius, tolerance=None, feature_angle=30.0, reach=3.0):
+    """Round the sharp-edge chains of `mesh` that pass nearest to `seeds`.
+
+    mesh: Mesh.Mesh (not modified).  seeds: a Vector, an (x, y, z) triple, or a list of them; each picks
+    the sharp edge nearest to it and its whole chain.  radius: mm, or a list of (point, radius) control
+    points for a variable radius.  tolerance: chordal tolerance, None or 0 means largest radius / 100.
+    feature_angle: degrees between facets from which an edge is sharp.  reach: facets within reach * r
+    of a chain are re-meshed.  Returns a RoundingResult; raises RoundingError.
+    """
+    started = time.perf_counter()
+    inputs.check_mesh(mesh)
+    arguments = _engine_arguments(seeds, radius, tolerance, feature_angle, reach)
+    vertices, triangles = meshconv.mesh_to_arrays(mesh)
+    return _round(vertices, triangles, arguments, started)
+
+
+def round_arrays(vertices, triangles, seeds, radius, tolerance=None, feature_angle=30.0, reach=3.0):
+    """round_edges for a mesh already given as vertices (n, 3) and triangles (m, 3)."""
+    started = time.perf_counter()
+    if len(triangles) == 0:
+        raise RoundingError("mesh is empty: it has no facets")
+    arguments = _engine_arguments(seeds, radius, tolerance, feature_angle, reach)
+    return _round(vertices, triangles, arguments, started)
+
+
+def trace_chains(mesh, seeds, feature_angle=30.0):
+    """The sharp-edge chains the seeds select, as Part.Wire (closed loops are closed wires)."""
+    inputs.check_mesh(mesh)
+    vertices, triangles = meshconv.mesh_to_arrays(mesh)
+    return trace_arrays(vertices, triangles, seeds, feature_angle)
+
+
+def trace_arrays(vertices, triangles, seeds, feature_angle=30.0):
+    """trace_chains for a mesh given as arrays."""
+    seed_points = inputs.seed_array(seeds)
+    angle = inputs.feature_angle_value(feature_angle)
+    found = _call_engine("trace_chains", vertices, triangles, seed_points, feature_angle=angle)
+    return shapes.polyline_wires([c["points"] for c in found], [c["closed"] for c in found])
+
+
+def _engine_arguments(seeds, radius, tolerance, feature_angle, reach):
+    """Keyword arguments for core.round_edges, every one checked."""
+    largest_radius, law = inputs.radius_and_law(radius)
+    return dict(
+        seeds=inputs.seed_array(seeds),
+        radius=largest_radius,
+        tolerance=inputs.tolerance_value(tolerance),
+        feature_angle=inputs.feature_angle_value(feature_angle),
+        reach=inputs.reach_value(reach),
+        radius_law=law,
+    )
+
+
+def _round(vertices, triangles, arguments, started):
+    vertices = np.ascontiguousarray(vertices, dtype=np.float64)
+    triangles = np.ascontiguousarray(triangles, dtype=np.int64)
+    seeds = arguments.pop("seeds")
+    radius = arguments.pop("radius")
+    raw = _call_engine("round_edges", vertices, triangles, seeds, radius, **arguments)
+    out_vertices, out_triangles = _checked_mesh_arrays(raw["vertices"], raw["triangles"])
+    contacts = [side for pair in raw["contacts"] for side in pair]
+    closed = list(raw["closed"])
+    result = RoundingResult(
+        mesh=meshconv.arrays_to_mesh(out_vertices, out_triangles),
+        surfaces=shapes.faces_from_brep(raw["faces"]),
+        spines=shapes.polyline_wires(raw["spines"], closed),
+        chains=shapes.polyline_wires(raw["chains"], closed),
+        contacts=shapes.polyline_wires(contacts, [c for c in closed for _ in (0, 1)]),
+        report=_json_ready(raw["report"]),
+    )
+    result.report.update(facets_in=len(triangles), facets_out=len(out_triangles),
+                         seconds=time.perf_counter() - started)
+    return result
+
+
+def _call_engine(name, *args, **kwargs):
+    """Call core.<name>; anything the engine raises reaches the caller as a RoundingError."""
+    function = getattr(require_core(), name)
+    try:
+        return function(*args, **kwargs)
+    except RoundingError:
+        raise
+    except (MemoryError, KeyboardInterrupt):
+        raise
+    except Exception as exc:  # a binding or engine bug must still surface as the documented error type
+        raise RoundingError(f"the rounding engine failed in {name}: {type(exc).__name__}: {exc}") from exc
+
+
+def _checked_mesh_arrays(vertices, triangles):
+    """The engine's mesh as arrays, refused if it could not be turned into a valid Mesh.Mesh."""
+    vertices = np.asarray(vertices, dtype=np.float64).reshape(-1, 3)
+    triangles = np.asarray(triangles).reshape(-1, 3)
+    if len(triangles) == 0:
+        raise RoundingError("the engine returned an empty mesh")
+    if triangles.min() < 0 or triangles.max() >= len(vertices) or not np.all(np.isfinite(vertices)):
+        raise RoundingError("the engine returned an invalid mesh (index out of range or non-finite point)")
+    return vertices, triangles
+
+
+def _json_ready(value):
+    """The engine's report with numpy scalars/arrays turned into plain Python (for json.dump)."""
+    if isinstance(value, dict):
+        return {str(k): _json_ready(v) for k, v in value.items()}
+    if isinstance(value, (list, tuple)):
+        return [_json_ready(v) for v in value]
+    if isinstance(value, np.ndarray):
+        return _json_ready(value.tolist())
+    if isinstance(value, np.generic):
+        value = value.item()
+    if isinstance(value, float) and not math.isfinite(value):
+        return None  # JSON has no NaN/inf
+    return value

@@ -1,0 +1,223 @@
+"""The `meshround` command line: round sharp edges of a mesh file, headless.
+
+    meshround round IN OUT --seed X,Y,Z [--seed ...] (--radius R | --radius-at X,Y,Z:R ...)
+                    [--tolerance T] [--feature-angle A] [--reach K] [--report FILE]
+    meshround demo [--out DIR]
+
+Run as `/usr/bin/python3 -m MeshRound.cli ...` with Mod/MeshRound on sys.path (the `meshround` wrapper
+next to this package does that).  Exit status: 0 done, 1 the work failed (unreadable input, no sharp
+edge found, rounding or writing failed), 2 the command line is wrong (argparse's convention).
+OUT is written to a temporary file in its folder and renamed on success, so a failed run leaves no file.
+"""
+import argparse
+import importlib.util
+import json
+import math
+import os
+import sys
+import tempfile
+
+FREECAD_LIB = "/usr/lib/freecad-python3/lib"
+REPO_ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__)))))
+DEMO_SCRIPT = os.path.join(REPO_ROOT, "resources", "srail_demo.py")
+
+# What FreeCAD 0.20's Mesh module reads, and writes, chosen by file extension.
+READ_EXTENSIONS = ("stl", "ast", "obj", "ply", "off", "bms", "smf", "nas", "bdf")
+WRITE_EXTENSIONS = READ_EXTENSIONS + ("3mf", "iv", "x3d", "x3dz", "xhtml", "wrl", "vrml", "wrz", "idtf",
+                                      "mgl", "py", "asy")
+
+EXIT_FAILED, EXIT_USAGE = 1, 2
+
+
+class Failure(Exception):
+    """The work could not be done; the message is printed and the exit status is 1."""
+
+
+# ------------------------------------------------------------------------------ argument types
+def _finite(text):
+    try:
+        value = float(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"not a number: {text!r}") from None
+    if not math.isfinite(value):
+        raise argparse.ArgumentTypeError(f"not a finite number: {text!r}")
+    return value
+
+
+def point(text):
+    """'X,Y,Z' -> (x, y, z)."""
+    parts = text.split(",")
+    if len(parts) != 3:
+        raise argparse.ArgumentTypeError(f"expected X,Y,Z (three comma-separated numbers), got {text!r}")
+    return tuple(_finite(p) for p in parts)
+
+
+def positive(text):
+    value = _finite(text)
+    if value <= 0:
+        raise argparse.ArgumentTypeError(f"must be > 0, got {text!r}")
+    return value
+
+
+def non_negative(text):
+    value = _finite(text)
+    if value < 0:
+        raise argparse.ArgumentTypeError(f"must be >= 0, got {text!r}")
+    return value
+
+
+def angle(text):
+    value = _finite(text)
+    if not 0 < value < 180:
+        raise argparse.ArgumentTypeError(f"must be between 0 and 180 degrees, got {text!r}")
+    return value
+
+
+def control_point(text):
+    """'X,Y,Z:R' -> ((x, y, z), r)."""
+    where, colon, radius = text.rpartition(":")
+    if not colon:
+        raise argparse.ArgumentTypeError(f"expected X,Y,Z:R, got {text!r}")
+    return point(where), positive(radius)
+
+
+# ------------------------------------------------------------------------------ the parser
+def build_parser():
+    parser = argparse.ArgumentParser(
+        prog="meshround", description="Round sharp edges of triangle meshes with a rolling ball.",
+        epilog="Exit status: 0 done, 1 the rounding (or reading/writing) failed, 2 bad command line.")
+    commands = parser.add_subparsers(dest="command", required=True, metavar="COMMAND")
+
+    rnd = commands.add_parser(
+        "round", help="round the sharp-edge chains nearest to the seeds",
+        description="Round the sharp-edge chains of IN nearest to the seeds and write OUT. "
+                    f"Formats by extension: reads {', '.join(READ_EXTENSIONS)}; "
+                    f"writes those and {', '.join(WRITE_EXTENSIONS[len(READ_EXTENSIONS):])}.")
+    rnd.add_argument("input", metavar="IN", help="mesh file to read")
+    rnd.add_argument("output", metavar="OUT", help="mesh file to write (format from its extension)")
+    rnd.add_argument("--seed", metavar="X,Y,Z", type=point, action="append", required=True,
+                     help="a point near a sharp edge; its whole chain is rounded (repeatable)")
+    radius = rnd.add_mutually_exclusive_group(required=True)
+    radius.add_argument("--radius", metavar="R", type=positive, help="constant radius (mm)")
+    radius.add_argument("--radius-at", metavar="X,Y,Z:R", type=control_point, action="append",
+                        help="variable radius: radius R at the chain point nearest X,Y,Z (repeatable)")
+    rnd.add_argument("--tolerance", metavar="T", type=non_negative, default=None,
+                     help="chordal tolerance (mm); default: largest radius / 100")
+    rnd.add_argument("--feature-angle", metavar="A", type=angle, default=30.0,
+                     help="an edge is sharp when its facets turn by at least A degrees (default 30)")
+    rnd.add_argument("--reach", metavar="K", type=positive, default=3.0,
+                     help="re-mesh facets within K x radius of a chain (default 3)")
+    rnd.add_argument("--report", metavar="FILE", help="write the rounding report as JSON")
+
+    demo = commands.add_parser("demo", help="run the S-rail demo (resources/srail_demo.py)")
+    demo.add_argument("--out", metavar="DIR", default="out", help="output folder (default: out)")
+    return parser
+
+
+def check_extensions(parser, args):
+    for path, allowed, role in ((args.input, READ_EXTENSIONS, "read"),
+                                (args.output, WRITE_EXTENSIONS, "write")):
+        ext = os.path.splitext(path)[1].lstrip(".").lower()
+        if ext not in allowed:
+            parser.error(f"cannot {role} '{path}': unknown mesh format '.{ext}' "
+                         f"(known: {', '.join(allowed)})")
+
+
+# ------------------------------------------------------------------------------ the commands
+def run_round(args):
+    Mesh, MeshRound = _import_freecad()
+    mesh = _read_mesh(Mesh, args.input)
+    radius = args.radius if args.radius is not None else args.radius_at
+    try:
+        result = MeshRound.round_edges(mesh, args.seed, radius, tolerance=args.tolerance,
+                                       feature_angle=args.feature_angle, reach=args.reach)
+    except MeshRound.RoundingError as exc:
+        raise Failure(f"rounding failed: {exc}") from exc
+    _write_atomically(args.output, result.mesh.write)
+    if args.report:
+        report = dict(result.report, input=args.input, output=args.output)
+        _write_atomically(args.report, lambda path: _dump_json(report, path))
+    r = result.report
+    print(f"meshround: {r.get('chains')} chain(s) rounded, {r.get('facets_in')} -> {r.get('facets_out')} "
+          f"facets, max deviation {r.get('max_deviation')}, {r.get('seconds', 0.0):.2f} s -> {args.output}")
+
+
+def run_demo(out_dir):
+    """Run the S-rail demo script of the source tree (resources/srail_demo.py: main(out_dir))."""
+    if not os.path.isfile(DEMO_SCRIPT):
+        raise Failure(f"the demo script {DEMO_SCRIPT} is missing: `meshround demo` needs the MeshRound "
+                      "source tree (resources/srail_demo.py)")
+    _import_freecad()
+    spec = importlib.util.spec_from_file_location("srail_demo", DEMO_SCRIPT)
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    module.main(out_dir=out_dir)
+
+
+def _import_freecad():
+    if FREECAD_LIB not in sys.path:
+        sys.path.append(FREECAD_LIB)
+    try:
+        import FreeCAD  # noqa: F401  (must come before Mesh)
+        import Mesh
+        import MeshRound
+    except ImportError as exc:
+        raise Failure(f"cannot import FreeCAD ({exc}); run with Debian's /usr/bin/python3 and "
+                      f"FreeCAD 0.20 installed in {FREECAD_LIB}") from exc
+    return Mesh, MeshRound
+
+
+def _read_mesh(Mesh, path):
+    if not os.path.isfile(path):
+        raise Failure(f"cannot read '{path}': no such file")
+    try:
+        mesh = Mesh.Mesh(path)
+    except Exception as exc:  # FreeCAD raises OSError or its own Base exceptions for bad files
+        raise Failure(f"cannot read '{path}': {exc}") from exc
+    if mesh.CountFacets == 0:
+        raise Failure(f"cannot read '{path}': no facets (empty, or not a valid mesh file)")
+    return mesh
+
+
+def _write_atomically(path, write):
+    """Call write(temp_path) for a temporary file beside `path`, then rename it to `path`."""
+    folder = os.path.dirname(os.path.abspath(path))
+    name = os.path.basename(path)
+    stem, ext = os.path.splitext(name)
+    try:  # the temporary file keeps the extension: FreeCAD picks the format from it
+        handle, temp = tempfile.mkstemp(prefix=f".{stem}.", suffix=ext, dir=folder)
+        os.close(handle)
+    except OSError as exc:
+        raise Failure(f"cannot write '{path}': {exc}") from exc
+    try:
+        write(temp)
+        os.replace(temp, path)
+    except Exception as exc:
+        if os.path.exists(temp):
+            os.remove(temp)
+        raise Failure(f"cannot write '{path}': {exc}") from exc
+
+
+def _dump_json(data, path):
+    with open(path, "w", encoding="utf-8") as stream:
+        json.dump(data, stream, indent=2, sort_keys=True)
+        stream.write("\n")
+
+
+def main(argv=None):
+    parser = build_parser()
+    args = parser.parse_args(argv)
+    try:
+        if args.command == "round":
+            check_extensions(parser, args)
+            run_round(args)
+        else:
+            run_demo(args.out)
+    except Failure as exc:
+        print(f"meshround: error: {exc}", file=sys.stderr)
+        return EXIT_FAILED
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

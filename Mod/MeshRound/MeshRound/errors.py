@@ -1,0 +1,26 @@
+"""RoundingError, and the compiled engine it comes from.
+
+The engine's own exception class is the public one, so `except MeshRound.RoundingError` catches errors
+raised in C++ and in Python alike.  If the compiled module is missing (not built yet), `import MeshRound`
+still works, the workbench still loads, and every call raises a RoundingError that says how to build it.
+"""
+try:
+    from . import _meshround_core as core
+    RoundingError = core.RoundingError
+    CORE_IMPORT_ERROR = None
+except ImportError as exc:  # not built, or built for another Python
+    core = None
+    CORE_IMPORT_ERROR = exc
+
+    class RoundingError(ValueError):
+        """A rounding could not be made; the message names the cause."""
+
+
+def require_core():
+    """The compiled engine module, or a RoundingError explaining why it cannot be used."""
+    if core is None:
+        raise RoundingError(
+            "the compiled MeshRound engine (_meshround_core) could not be imported "
+            f"({CORE_IMPORT_ERROR}); build it with `cmake -S <repo> -B <repo>/build && "
+            "cmake --build <repo>/build`")
+    return core

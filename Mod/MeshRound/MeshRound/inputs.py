@@ -1,0 +1,102 @@
+"""Checks and normalises what a caller hands to the rounding API.
+
+Every problem becomes a RoundingError whose message says which argument is wrong and why, so that the
+console, the feature's error state, the task panel and the CLI all show the same clear text.
+"""
+import math
+import numbers
+
+import numpy as np
+
+import FreeCAD
+import Mesh
+
+from .errors import RoundingError
+
+
+def check_mesh(mesh):
+    if not isinstance(mesh, Mesh.Mesh):
+        raise RoundingError(f"mesh must be a Mesh.Mesh, not {type(mesh).__name__}")
+    if mesh.CountFacets == 0:
+        raise RoundingError("mesh is empty: it has no facets")
+
+
+def seed_array(seeds):
+    """(k, 3) float64 from a Vector, a 3-sequence, or a list of either."""
+    if _is_point(seeds):
+        seeds = [seeds]
+    try:
+        points = [_point(s) for s in seeds]
+    except TypeError:
+        raise RoundingError(
+            "seeds must be a FreeCAD.Vector, an (x, y, z) triple, or a list of them; "
+            f"got {type(seeds).__name__}") from None
+    if not points:
+        raise RoundingError("no seed given: pick at least one point near a sharp edge")
+    array = np.array(points, dtype=np.float64).reshape(-1, 3)
+    if not np.all(np.isfinite(array)):
+        raise RoundingError("seed coordinates must be finite numbers")
+    return array
+
+
+def radius_and_law(radius):
+    """(largest radius, law array (p, 4) or None) from a number or from [(point, r), ...] pairs."""
+    if isinstance(radius, FreeCAD.Units.Quantity):
+        radius = radius.Value  # mm
+    if _is_number(radius):
+        return _positive("radius", radius), None
+    try:
+        pairs = [(_point(p), r) for p, r in radius]
+    except (TypeError, ValueError):
+        raise RoundingError(
+            "radius must be a number (mm) or a list of (point, radius) control points; "
+            f"got {type(radius).__name__}") from None
+    if not pairs:
+        raise RoundingError("variable radius needs at least one (point, radius) control point")
+    law = np.array([(*p, _positive("control point radius", r)) for p, r in pairs], dtype=np.float64)
+    if not np.all(np.isfinite(law[:, :3])):
+        raise RoundingError("control point coordinates must be finite numbers")
+    return float(law[:, 3].max()), law
+
+
+def tolerance_value(tolerance):
+    """The core's tolerance: 0 means 'largest radius / 100'."""
+    if tolerance is None:
+        return 0.0
+    if not _is_number(tolerance) or math.isnan(tolerance) or tolerance < 0 or math.isinf(tolerance):
+        raise RoundingError(f"tolerance must be a finite number >= 0 (0 or None: r/100), got {tolerance!r}")
+    return float(tolerance)
+
+
+def feature_angle_value(angle):
+    if not _is_number(angle) or not 0 < angle < 180:
+        raise RoundingError(f"feature_angle must be a number of degrees in (0, 180), got {angle!r}")
+    return float(angle)
+
+
+def reach_value(reach):
+    return _positive("reach", reach)
+
+
+def _positive(name, value):
+    if not _is_number(value) or not math.isfinite(value) or value <= 0:
+        raise RoundingError(f"{name} must be a finite number > 0, got {value!r}")
+    return float(value)
+
+
+def _is_number(value):
+    return isinstance(value, numbers.Real) and not isinstance(value, bool)
+
+
+def _is_point(value):
+    if isinstance(value, FreeCAD.Vector):
+        return True
+    return (isinstance(value, (tuple, list, np.ndarray)) and len(value) == 3
+            and all(_is_number(c) for c in value))
+
+
+def _point(value):
+    """(x, y, z) floats of a Vector or 3-sequence of numbers; TypeError otherwise."""
+    if not _is_point(value):
+        raise TypeError(value)
+    return float(value[0]), float(value[1]), float(value[2])

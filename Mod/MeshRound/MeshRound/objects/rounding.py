@@ -1,0 +1,147 @@
+"""The parametric "Rounding" feature: a Mesh::FeaturePython whose mesh is its Base mesh, rounded.
+
+    obj = MeshRound.make_rounding(base, seeds, radius)   # then doc.recompute()
+
+Properties (group "Rounding"):
+  Base             App::PropertyLink        any Mesh feature, another Rounding included (roundings chain)
+  Seeds            App::PropertyVectorList  each selects the sharp edge nearest to it and its whole chain
+  Radius           App::PropertyLength      constant radius; takes expressions (e.g. Spreadsheet.r)
+  RadiusLawPoints  App::PropertyVectorList  variable radius: control points on the chain ...
+  RadiusLawRadii   App::PropertyFloatList   ... and their radii in mm (same length). A non-empty law wins
+                                            over Radius.
+  Tolerance        App::PropertyLength      chordal tolerance, 0 = largest radius / 100
+  FeatureAngle     App::PropertyAngle       an edge is sharp when its facets turn by at least this
+  Reach            App::PropertyFloat       facets within Reach * r of a chain are re-meshed
+  SurfaceShape     Part::PropertyPartShape  (hidden output) compound of the rolling-ball faces; the child
+                                            "RoundingSurfaces" feature shows it in the tree (STEP export)
+  Statistics       App::PropertyMap         (read-only output) the engine's report of the last recompute
+
+execute() never touches Base; on failure it raises, FreeCAD marks the feature invalid and prints why.
+The class path MeshRound.objects.rounding.Rounding is stored in .FCStd files: keep it stable.
+"""
+import FreeCAD
+import Part  # noqa: F401  (registers Part::PropertyPartShape before a file with one is restored)
+
+from .. import api, inputs, shapes
+from ..errors import RoundingError
+from ..progress import busy
+from . import surfaces as surfaces_feature
+
+TYPE = "Mesh::FeaturePython"
+GROUP = "Rounding"
+
+# (type, name, tooltip, default); added only when missing, so files from older versions keep loading.
+PROPERTIES = [
+    ("App::PropertyLink", "Base", "The mesh feature to round (never modified)", None),
+    ("App::PropertyVectorList", "Seeds", "Points near the sharp edges to round: each selects the "
+     "nearest sharp edge and its whole chain", None),
+    ("App::PropertyLength", "Radius", "Rolling ball radius (ignored when a radius law is given)", 5.0),
+    ("App::PropertyVectorList", "RadiusLawPoints", "Variable radius: control points on the chain", None),
+    ("App::PropertyFloatList", "RadiusLawRadii", "Variable radius: radius in mm at each control point",
+     None),
+    ("App::PropertyLength", "Tolerance", "Chordal tolerance of the new facets; 0 = radius / 100", 0.0),
+    ("App::PropertyAngle", "FeatureAngle", "An edge is sharp when its facets turn by at least this", 30.0),
+    ("App::PropertyFloat", "Reach", "Facets within Reach x radius of a chain are re-meshed", 3.0),
+    ("Part::PropertyPartShape", "SurfaceShape", "The rolling-ball surfaces of the last recompute", None),
+    ("App::PropertyMap", "Statistics", "Report of the last recompute", None),
+]
+# Outputs: written by execute() without touching the feature again; hidden or read-only for the user.
+OUTPUT_STATUS = {"SurfaceShape": ["Output", "Hidden"], "Statistics": ["Output", "ReadOnly"]}
+
+
+class Rounding:
+    """Proxy of the Rounding feature."""
+
+    def __init__(self, obj):
+        obj.Proxy = self
+        self.ensure_properties(obj)
+
+    @staticmethod
+    def ensure_properties(obj):
+        for type_name, name, tooltip, default in PROPERTIES:
+            if name in obj.PropertiesList:
+                continue
+            obj.addProperty(type_name, name, GROUP, tooltip)
+            if default is not None:
+                setattr(obj, name, default)
+            if name in OUTPUT_STATUS:
+                obj.setPropertyStatus(name, OUTPUT_STATUS[name])
+
+    def onDocumentRestored(self, obj):
+        self.ensure_properties(obj)
+
+    def execute(self, obj):
+        base = obj.Base
+        check_base(base)
+        with busy(f"Rounding edges of {base.Label}"):
+            result = api.round_edges(base.Mesh, list(obj.Seeds), radius_argument(obj),
+                                     tolerance=obj.Tolerance.Value or None,
+                                     feature_angle=obj.FeatureAngle.Value, reach=obj.Reach)
+        obj.Mesh = result.mesh
+        obj.SurfaceShape = shapes.compound(result.surfaces)
+        obj.Statistics = {key: str(value) for key, value in result.report.items()
+                          if not isinstance(value, (dict, list))}  # the scalars; details stay in the API
+
+    # No state of its own: everything lives in the properties.
+    def __getstate__(self):
+        return None
+
+    def __setstate__(self, state):
+        return None
+
+    dumps, loads = __getstate__, __setstate__  # the names FreeCAD >= 0.21 looks for
+
+
+def check_base(base):
+    """RoundingError unless base is a Mesh feature with facets."""
+    if base is None:
+        raise RoundingError("Rounding has no Base: link it to a mesh feature")
+    if not base.isDerivedFrom("Mesh::Feature"):
+        raise RoundingError(f"Base '{base.Label}' is a {base.TypeId}, not a mesh feature")
+    if base.Mesh.CountFacets == 0:
+        raise RoundingError(f"Base '{base.Label}' has an empty mesh")
+
+
+def radius_argument(obj):
+    """The radius to hand to api.round_edges: the law's (point, r) pairs if it has any, else Radius."""
+    points, radii = list(obj.RadiusLawPoints), list(obj.RadiusLawRadii)
+    if len(points) != len(radii):
+        raise RoundingError(f"RadiusLawPoints has {len(points)} entries but RadiusLawRadii has "
+                            f"{len(radii)}: they must pair up")
+    if points:
+        return list(zip(points, radii))
+    return obj.Radius.Value
+
+
+def make_rounding(base, seeds, radius, tolerance=0, feature_angle=30, reach=3, name="Rounding",
+                  doc=None):
+    """Add a Rounding of mesh feature `base` (and its "RoundingSurfaces" child) to doc; no recompute.
+
+    radius: mm, or a list of (point, radius) control points for a variable radius.  The arguments are
+    checked here (RoundingError); whether the seeds find a sharp edge shows at recompute.
+    """
+    check_base(base)
+    seed_vectors = [FreeCAD.Vector(*p) for p in inputs.seed_array(seeds).tolist()]
+    largest_radius, law = inputs.radius_and_law(radius)
+    tolerance = inputs.tolerance_value(tolerance)
+    feature_angle = inputs.feature_angle_value(feature_angle)
+    reach = inputs.reach_value(reach)
+
+    doc = doc or base.Document
+    obj = doc.addObject(TYPE, name)
+    Rounding(obj)
+    obj.Base = base
+    obj.Seeds = seed_vectors
+    obj.Radius = largest_radius
+    if law is not None:
+        obj.RadiusLawPoints = [FreeCAD.Vector(*row[:3]) for row in law.tolist()]
+        obj.RadiusLawRadii = law[:, 3].tolist()
+    obj.Tolerance = tolerance
+    obj.FeatureAngle = feature_angle
+    obj.Reach = reach
+    surfaces_feature.make_surfaces(obj)
+    if FreeCAD.GuiUp:
+        from ..viewproviders.rounding import ViewProviderRounding
+        ViewProviderRounding(obj.ViewObject)
+        base.ViewObject.Visibility = False
+    return obj

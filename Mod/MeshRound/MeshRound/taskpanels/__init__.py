@@ -1,0 +1,1 @@
+"""Task panels (GUI only)."""

@@ -1,0 +1,339 @@
+"""The Round edges task panel: pick seeds on a mesh, see the chains and a live preview, accept.
+
+Picks: a click on the base mesh reaches handle_pick() through a selection observer; it adds a seed (or a
+variable-radius point), traces the chain at once and highlights it.  Scripts and the GUI test call the
+same add_seed() / add_radius_point() / set_radius() / preview_now() / accept() without a mouse.
+
+The panel never touches the document before OK: chain highlight and preview are Coin overlays, and the
+base mesh is only shown ghosted (restored on close).  OK runs FreeCADGui.doCommand lines (so macros record
+them) inside one undo transaction: MeshRound.make_rounding for a new feature, property assignments when
+editing one (double click on a Rounding).
+"""
+import weakref
+
+import FreeCAD
+import FreeCADGui
+from PySide import QtCore
+
+from .. import api, meshconv, shapes
+from ..errors import RoundingError
+from ..progress import busy
+from . import overlays
+from .round_edges_form import PICK_LAW_POINT, RoundEdgesForm, quantity_value
+
+PREVIEW_DELAY_MS = 400   # debounce: recompute the preview once the user stops typing/picking
+GHOST_TRANSPARENCY = 70  # the base mesh stays pickable but lets the preview show through
+DEFAULTS = dict(radius=5.0, tolerance=0.0, feature_angle=30.0, reach=3.0)
+
+_active = None  # weak reference to the open panel
+
+
+def active_panel():
+    """The open RoundEdgesPanel, or None: lets scripts and the GUI test drive it without a mouse."""
+    return _active() if _active else None
+
+
+class RoundEdgesPanel:
+    """Task panel to create a Rounding of `base`, or to edit `feature` (whose Base is `base`)."""
+
+    def __init__(self, base, feature=None, seeds=()):
+        self.base, self.feature, self.doc = base, feature, base.Document
+        self.vertices, self.triangles = meshconv.mesh_to_arrays(base.Mesh)  # once: every pick traces
+        values = _feature_values(feature) if feature else dict(DEFAULTS, seeds=[], law=[])
+        self.seeds = [FreeCAD.Vector(p) for p in values["seeds"]]
+        self.law = list(values["law"])
+        self.chain_wires, self.result, self.error = [], None, None
+
+        self.form = RoundEdgesForm(values["radius"], values["tolerance"], values["feature_angle"],
+                                   values["reach"])
+        self._radius_expression = _expression_of(feature, "Radius")
+        if self._radius_expression:  # the expression wins at every recompute: do not pretend otherwise
+            self.form.radius.setEnabled(False)
+            self.form.radius.setToolTip(f"Radius is set by the expression {self._radius_expression}")
+        self._timer = QtCore.QTimer()
+        self._timer.setSingleShot(True)
+        self._timer.setInterval(PREVIEW_DELAY_MS)
+        self._timer.timeout.connect(self.update_preview)
+        self._connect_form()
+
+        view = FreeCADGui.getDocument(self.doc.Name).ActiveView
+        self._marks = overlays.Overlay(view, on_top=True)
+        self._preview = overlays.Overlay(view)
+        self._saved_view_state = []
+        self._enter_view_state()
+        self._picker = _PickObserver(self)
+        FreeCADGui.Selection.addObserver(self._picker)
+        global _active
+        _active = weakref.ref(self)
+
+        self.form.show_law(self.law)
+        for seed in seeds:
+            self.add_seed(seed)
+        self._seeds_changed()
+
+    # ------------------------------------------------------------------ picking (mouse or script)
+    def handle_pick(self, point):
+        """What a click on the base mesh does, according to the pick mode."""
+        if self.form.pick_mode() == PICK_LAW_POINT:
+            return self.add_radius_point(point)
+        return self.add_seed(point)
+
+    def add_seed(self, point):
+        """Add a seed if a sharp edge is near it: trace and highlight its chain. True if added."""
+        candidate = self.seeds + [FreeCAD.Vector(*point)]
+        try:
+            self.chain_wires = api.trace_arrays(self.vertices, self.triangles, candidate,
+                                                self.feature_angle())
+        except RoundingError as exc:
+            self._show_error(f"Seed not added: {exc}")
+            return False
+        self.seeds = candidate
+        self._seeds_changed(retrace=False)
+        return True
+
+    def remove_seeds(self, rows):
+        keep = set(range(len(self.seeds))) - set(rows)
+        self.seeds = [s for i, s in enumerate(self.seeds) if i in keep]
+        self._seeds_changed()
+
+    def add_radius_point(self, point, radius=None):
+        """Add a variable-radius control point (radius defaults to the current constant radius)."""
+        radius = radius if radius is not None else quantity_value(self.form.radius)
+        self.law.append((point[0], point[1], point[2], float(radius)))
+        self.form.show_law(self.law)
+        self._refresh_marks()
+        self.schedule_preview()
+        return True
+
+    def set_radius(self, radius):
+        self.form.radius.setProperty("rawValue", float(radius))  # fires valueChanged -> preview
+
+    def feature_angle(self):
+        return quantity_value(self.form.feature_angle)
+
+    # ------------------------------------------------------------------ parameters and preview
+    def parameters(self):
+        """The current inputs as api.round_edges keyword arguments (ValueError: bad table cell)."""
+        self.law = self.form.law_rows()
+        radius = ([(FreeCAD.Vector(*row[:3]), row[3]) for row in self.law] if self.law
+                  else quantity_value(self.form.radius))
+        return dict(seeds=list(self.seeds), radius=radius,
+                    tolerance=quantity_value(self.form.tolerance) or None,
+                    feature_angle=self.feature_angle(), reach=self.form.reach.value())
+
+    def schedule_preview(self):
+        if self.form.live_preview.isChecked():
+            self._timer.start()  # restarts: many quick changes give one computation
+
+    def preview_now(self):
+        """Compute the preview at once (tests, or to skip the debounce); returns the RoundingResult."""
+        self._timer.stop()
+        self.update_preview()
+        return self.result
+
+    def update_preview(self):
+        self.result = None
+        self._preview.clear()
+        if not self.seeds:
+            self.form.show_status("Click near a sharp edge of the mesh to select it.")
+            return
+        try:
+            with busy("Previewing rounding"):
+                self.result = api.round_arrays(self.vertices, self.triangles, **self.parameters())
+        except (RoundingError, ValueError) as exc:
+            self._show_error(str(exc))
+            return
+        vertices, triangles = meshconv.mesh_to_arrays(self.result.mesh)
+        contacts = [shapes.wire_points(w) for w in self.result.contacts]
+        self._preview.show(overlays.mesh_node(vertices, triangles),
+                           overlays.polylines_node(contacts, overlays.CONTACT_COLOR, width=2.0))
+        self.error = None
+        self.form.show_status(_summary(self.result.report))
+
+    # ------------------------------------------------------------------ OK / Cancel
+    def accept(self):
+        if not self.seeds:
+            self._show_error("Select at least one sharp edge (click next to it) before OK.")
+            return False
+        try:
+            commands = self._edit_commands() if self.feature else self._create_commands()
+        except (RoundingError, ValueError) as exc:
+            self._show_error(str(exc))
+            return False
+        self._leave_view_state()  # before the commands: make_rounding hides the base itself
+        self.doc.openTransaction("Edit rounding" if self.feature else "Round edges")
+        try:
+            for line in commands + [f"{_doc_expr(self.doc)}.recompute()"]:
+                FreeCADGui.doCommand(line)
+        except Exception as exc:  # doCommand reports Python errors as generic exceptions
+            self.doc.abortTransaction()
+            self._enter_view_state()
+            self._show_error(f"Could not apply: {exc}")
+            return False
+        self.doc.commitTransaction()
+        self._finish()
+        return True
+
+    def reject(self):
+        self._leave_view_state()
+        self._finish()
+        return True
+
+    def getStandardButtons(self):
+        from PySide import QtGui
+        return int(QtGui.QDialogButtonBox.Ok | QtGui.QDialogButtonBox.Cancel)
+
+    def _create_commands(self):
+        p = self.parameters()
+        return ["import MeshRound",
+                f"MeshRound.make_rounding({_doc_expr(self.doc)}.getObject({self.base.Name!r}), "
+                f"{_vectors_code(p['seeds'])}, {_radius_code(p['radius'])}, "
+                f"tolerance={p['tolerance'] or 0.0!r}, feature_angle={p['feature_angle']!r}, "
+                f"reach={p['reach']!r})"]
+
+    def _edit_commands(self):
+        p = self.parameters()
+        obj = f"{_doc_expr(self.doc)}.getObject({self.feature.Name!r})"
+        lines = [f"{obj}.Seeds = {_vectors_code(p['seeds'])}",
+                 f"{obj}.RadiusLawPoints = {_vectors_code([row[:3] for row in self.law])}",
+                 f"{obj}.RadiusLawRadii = {[row[3] for row in self.law]!r}",
+                 f"{obj}.Tolerance = {p['tolerance'] or 0.0!r}",
+                 f"{obj}.FeatureAngle = {p['feature_angle']!r}",
+                 f"{obj}.Reach = {p['reach']!r}"]
+        if not self._radius_expression:
+            lines.insert(1, f"{obj}.Radius = {quantity_value(self.form.radius)!r}")
+        return lines
+
+    def _finish(self):
+        """Close the dialog (and edit mode); overlays and observer go away."""
+        global _active
+        _active = None
+        self._timer.stop()
+        FreeCADGui.Selection.removeObserver(self._picker)
+        self._marks.remove()
+        self._preview.remove()
+        if self.feature:
+            FreeCADGui.getDocument(self.doc.Name).resetEdit()
+        else:
+            FreeCADGui.Control.closeDialog()
+
+    # ------------------------------------------------------------------ internals
+    def _connect_form(self):
+        f = self.form
+        for box in (f.radius, f.tolerance, f.reach):
+            box.valueChanged.connect(lambda *_: self.schedule_preview())
+        f.feature_angle.valueChanged.connect(lambda *_: self._seeds_changed())
+        f.law_table.itemChanged.connect(lambda *_: self._law_edited())
+        f.live_preview.toggled.connect(lambda on: self.schedule_preview() if on else self._preview.clear())
+        f.remove_seed_button.clicked.connect(lambda: self.remove_seeds(f.selected_seed_rows()))
+        f.clear_seeds_button.clicked.connect(lambda: self.remove_seeds(range(len(self.seeds))))
+        f.remove_law_button.clicked.connect(self._remove_law_rows)
+
+    def _seeds_changed(self, retrace=True):
+        """After seeds or feature angle changed: list, chains, highlight, preview."""
+        self.form.show_seeds(self.seeds)
+        if retrace:
+            self.chain_wires = []
+            if self.seeds:
+                try:
+                    self.chain_wires = api.trace_arrays(self.vertices, self.triangles, self.seeds,
+                                                        self.feature_angle())
+                except RoundingError as exc:
+                    self._show_error(str(exc))
+        self._refresh_marks()
+        self.schedule_preview()
+        if not self.seeds:
+            self.update_preview()  # shows the hint and clears an old preview at once
+
+    def _law_edited(self):
+        try:
+            self.law = self.form.law_rows()
+        except ValueError as exc:
+            self._show_error(str(exc))
+            return
+        self._refresh_marks()
+        self.schedule_preview()
+
+    def _remove_law_rows(self):
+        rows = set(self.form.selected_law_rows())
+        self.law = [row for i, row in enumerate(self.law) if i not in rows]
+        self.form.show_law(self.law)
+        self._refresh_marks()
+        self.schedule_preview()
+
+    def _refresh_marks(self):
+        chains = [shapes.wire_points(w) for w in self.chain_wires]
+        self._marks.show(overlays.polylines_node(chains, overlays.CHAIN_COLOR, width=5.0),
+                         overlays.markers_node([tuple(s) for s in self.seeds], overlays.SEED_COLOR),
+                         overlays.markers_node([row[:3] for row in self.law], overlays.LAW_COLOR))
+
+    def _show_error(self, message):
+        self.error = message
+        self.form.show_status(message, error=True)
+
+    def _enter_view_state(self):
+        """Ghost the base (pickable, see-through); hide the edited feature so the preview shows."""
+        changes = [(self.base.ViewObject, "Visibility", True),
+                   (self.base.ViewObject, "Transparency", GHOST_TRANSPARENCY)]
+        if self.feature:
+            changes.append((self.feature.ViewObject, "Visibility", False))
+        self._saved_view_state = [(vobj, name, getattr(vobj, name)) for vobj, name, _ in changes]
+        for vobj, name, value in changes:
+            setattr(vobj, name, value)
+
+    def _leave_view_state(self):
+        for vobj, name, value in reversed(self._saved_view_state):
+            setattr(vobj, name, value)
+        self._saved_view_state = []
+
+
+class _PickObserver:
+    """FreeCAD selection observer: a click on the base mesh (with a picked point) becomes a pick."""
+
+    def __init__(self, panel):
+        self.panel = panel
+
+    def addSelection(self, doc_name, obj_name, sub, point):
+        panel = self.panel
+        if doc_name != panel.doc.Name or obj_name != panel.base.Name or not sub:
+            return  # tree clicks carry no point (no sub-element); other objects are not ours
+        panel.handle_pick(FreeCAD.Vector(*point))
+        # keep the base unselected so the next click on it is a new selection event again
+        QtCore.QTimer.singleShot(0, FreeCADGui.Selection.clearSelection)
+
+
+def _feature_values(feature):
+    return dict(seeds=list(feature.Seeds),
+                law=[(p.x, p.y, p.z, r) for p, r in zip(feature.RadiusLawPoints, feature.RadiusLawRadii)],
+                radius=feature.Radius.Value, tolerance=feature.Tolerance.Value,
+                feature_angle=feature.FeatureAngle.Value, reach=feature.Reach)
+
+
+def _expression_of(obj, name):
+    """The expression bound to property `name` of obj, or None."""
+    if obj is None:
+        return None
+    return dict((path.lstrip("."), expr) for path, expr in obj.ExpressionEngine).get(name)
+
+
+def _summary(report):
+    deviation = report.get("max_deviation")
+    angle = report.get("min_new_angle_deg")
+    return (f"Preview: {report.get('chains')} chain(s), {report.get('facets_removed')} facets removed, "
+            f"{report.get('facets_added')} added; max deviation "
+            f"{'-' if deviation is None else f'{deviation:.4f} mm'}, smallest new angle "
+            f"{'-' if angle is None else f'{angle:.1f} deg'}; {report.get('seconds', 0.0):.2f} s.")
+
+
+def _doc_expr(doc):
+    return f"App.getDocument({doc.Name!r})"
+
+
+def _vectors_code(points):
+    return "[" + ", ".join(f"App.Vector({p[0]!r}, {p[1]!r}, {p[2]!r})" for p in points) + "]"
+
+
+def _radius_code(radius):
+    if isinstance(radius, list):
+        return "[" + ", ".join(f"(App.Vector({p.x!r}, {p.y!r}, {p.z!r}), {r!r})" for p, r in radius) + "]"
+    return repr(radius)

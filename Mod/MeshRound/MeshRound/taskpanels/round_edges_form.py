@@ -1,0 +1,145 @@
+"""The widgets of the Round edges task panel (layout only; behaviour is in round_edges.py)."""
+import FreeCADGui
+from PySide import QtCore, QtGui
+
+PICK_SEED, PICK_LAW_POINT = "seed", "law"
+LAW_COLUMNS = ("X", "Y", "Z", "Radius")
+
+
+def quantity_box(unit, value, minimum=0.0, maximum=1e9, tooltip=""):
+    """A Gui::QuantitySpinBox (units, expressions, unit conversion as in FreeCAD's own panels)."""
+    box = FreeCADGui.UiLoader().createWidget("Gui::QuantitySpinBox")
+    box.setProperty("unit", unit)
+    box.setProperty("minimum", minimum)
+    box.setProperty("maximum", maximum)
+    box.setProperty("rawValue", value)
+    box.setToolTip(tooltip)
+    return box
+
+
+def quantity_value(box):
+    """The value of a QuantitySpinBox in FreeCAD's base unit (mm, degrees)."""
+    return float(box.property("rawValue"))
+
+
+class RoundEdgesForm(QtGui.QWidget):
+    """Seeds list, pick mode, radius (constant or law table), options, preview switch, status line."""
+
+    def __init__(self, radius, tolerance, feature_angle, reach):
+        super().__init__()
+        self.setWindowTitle("Round sharp edges")
+        layout = QtGui.QVBoxLayout(self)
+        layout.addWidget(self._edges_group())
+        layout.addWidget(self._radius_group(radius))
+        layout.addWidget(self._options_group(tolerance, feature_angle, reach))
+        self.live_preview = QtGui.QCheckBox("Live preview")
+        self.live_preview.setChecked(True)
+        layout.addWidget(self.live_preview)
+        self.status = QtGui.QLabel()
+        self.status.setWordWrap(True)
+        self.status.setTextInteractionFlags(QtCore.Qt.TextSelectableByMouse)
+        layout.addWidget(self.status)
+        layout.addStretch()
+
+    def _edges_group(self):
+        group = QtGui.QGroupBox("Edges")
+        layout = QtGui.QVBoxLayout(group)
+        hint = QtGui.QLabel("Click on the mesh next to a sharp edge: its whole chain is selected.")
+        hint.setWordWrap(True)
+        layout.addWidget(hint)
+        self.seed_list = QtGui.QListWidget()
+        self.seed_list.setSelectionMode(QtGui.QAbstractItemView.ExtendedSelection)
+        self.seed_list.setMaximumHeight(110)
+        layout.addWidget(self.seed_list)
+        buttons = QtGui.QHBoxLayout()
+        self.remove_seed_button = QtGui.QPushButton("Remove")
+        self.clear_seeds_button = QtGui.QPushButton("Clear")
+        buttons.addWidget(self.remove_seed_button)
+        buttons.addWidget(self.clear_seeds_button)
+        layout.addLayout(buttons)
+        modes = QtGui.QHBoxLayout()
+        modes.addWidget(QtGui.QLabel("A click adds:"))
+        self.pick_seed = QtGui.QRadioButton("an edge seed")
+        self.pick_law = QtGui.QRadioButton("a radius point")
+        self.pick_seed.setChecked(True)
+        modes.addWidget(self.pick_seed)
+        modes.addWidget(self.pick_law)
+        layout.addLayout(modes)
+        return group
+
+    def _radius_group(self, radius):
+        group = QtGui.QGroupBox("Radius")
+        layout = QtGui.QVBoxLayout(group)
+        row = QtGui.QFormLayout()
+        self.radius = quantity_box("mm", radius, minimum=0.0,
+                                   tooltip="Rolling ball radius (used when the table below is empty)")
+        row.addRow("Radius:", self.radius)
+        layout.addLayout(row)
+        layout.addWidget(QtGui.QLabel("Variable radius (points on the chain):"))
+        self.law_table = QtGui.QTableWidget(0, len(LAW_COLUMNS))
+        self.law_table.setHorizontalHeaderLabels(LAW_COLUMNS)
+        self.law_table.horizontalHeader().setSectionResizeMode(QtGui.QHeaderView.Stretch)
+        self.law_table.setMaximumHeight(130)
+        layout.addWidget(self.law_table)
+        self.remove_law_button = QtGui.QPushButton("Remove radius point")
+        layout.addWidget(self.remove_law_button)
+        return group
+
+    def _options_group(self, tolerance, feature_angle, reach):
+        group = QtGui.QGroupBox("Options")
+        layout = QtGui.QFormLayout(group)
+        self.tolerance = quantity_box("mm", tolerance, tooltip="Chordal tolerance; 0 = radius / 100")
+        self.feature_angle = quantity_box("deg", feature_angle, minimum=1.0, maximum=179.0,
+                                          tooltip="An edge is sharp when its facets turn by at least this")
+        self.reach = QtGui.QDoubleSpinBox()
+        self.reach.setRange(0.5, 20.0)
+        self.reach.setSingleStep(0.5)
+        self.reach.setValue(reach)
+        self.reach.setToolTip("Facets within reach x radius of a chain are re-meshed")
+        layout.addRow("Tolerance:", self.tolerance)
+        layout.addRow("Feature angle:", self.feature_angle)
+        layout.addRow("Reach:", self.reach)
+        return group
+
+    # ---------------------------------------------------------------- reading and writing values
+    def pick_mode(self):
+        return PICK_LAW_POINT if self.pick_law.isChecked() else PICK_SEED
+
+    def show_seeds(self, seeds):
+        self.seed_list.clear()
+        for number, p in enumerate(seeds, 1):
+            self.seed_list.addItem(f"{number}: ({p.x:.2f}, {p.y:.2f}, {p.z:.2f})")
+
+    def selected_seed_rows(self):
+        return sorted({index.row() for index in self.seed_list.selectedIndexes()})
+
+    def show_law(self, rows):
+        """Fill the table with (x, y, z, r) rows, without firing its change signal."""
+        blocked = self.law_table.blockSignals(True)
+        self.law_table.setRowCount(len(rows))
+        for i, row in enumerate(rows):
+            for j, value in enumerate(row):
+                self.law_table.setItem(i, j, QtGui.QTableWidgetItem(f"{value:.3f}"))
+        self.law_table.blockSignals(blocked)
+
+    def law_rows(self):
+        """[(x, y, z, r)] from the table; ValueError names the cell that is not a number."""
+        rows = []
+        for i in range(self.law_table.rowCount()):
+            row = []
+            for j, column in enumerate(LAW_COLUMNS):
+                item = self.law_table.item(i, j)
+                text = item.text() if item else ""
+                try:
+                    row.append(float(text))
+                except ValueError:
+                    raise ValueError(f"radius point {i + 1}: {column} is not a number: {text!r}") from None
+            rows.append(tuple(row))
+        return rows
+
+    def selected_law_rows(self):
+        return sorted({index.row() for index in self.law_table.selectedIndexes()})
+
+    def show_status(self, text, error=False):
+        self.status.setStyleSheet("color: #c00000; font-weight: bold;" if error else "")
+        self.status.setText(text)

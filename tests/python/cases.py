@@ -1,0 +1,286 @@
+"""CAD cases for the accuracy tests: a sharp Part solid, the chain of its edges to round, and the exact answer.
+
+The exact answer is OCCT's own BRepFilletAPI_MakeFillet on the CAD solid (Part.Shape.makeFillet, or the
+Part::Fillet feature for per-edge radii) -- code nobody on this project wrote.  The inputs given to
+MeshRound are meshes of the sharp solid (`Case.mesh(variant)`).
+
+Variable radius.  OCCT's "linear" law r1 -> r2 (Add(R1, R2, E)) is not linear: the radii become stations
+of a clamped cubic spline along the spine (zero end slopes, the spine extended past its ends).  So a
+variable case does not guess the law: it measures the radius the reference really has, on sections
+normal to the chain every ~r_max/2 (`measured_law`), and hands those as control points to MeshRound.
+Part exposes per-edge (r1, r2) only, no (parameter, radius) pairs; a 3-point law along a multi-edge chain
+is built from per-edge stations (the junction radii interpolated by arc length), which OCCT turns into one
+smooth law along the whole chain.
+
+Mesh precision.  Mesh.Mesh stores float32 points, so a mesh handed to MeshRound is already what an STL
+round trip would give (the test checks this); no STL round trip is made.
+"""
+import functools
+import math
+import sys
+
+for _p in ("/usr/lib/freecad-python3/lib", "/usr/lib/freecad/lib"):
+    if _p not in sys.path:
+        sys.path.append(_p)
+
+import FreeCAD  # noqa: E402
+import MeshPart  # noqa: E402
+import Part  # noqa: E402
+import numpy as np  # noqa: E402
+
+V = FreeCAD.Vector
+TOL = 1e-7  # mm: "on" for CAD coordinates built here
+
+# Mesh variants of the sharp solid; MaxLength is relative to the case's largest radius.
+MESH_VARIANTS = {
+    "fine": dict(MaxLength=0.4),    # several elements across the round
+    "coarse": dict(MaxLength=2.5),  # elements larger than the round itself
+    # a CAD export tessellation: few long thin triangles, chordal error r/250 on curved faces
+    "cad": dict(LinearDeflection=0.004, AngularDeflection=0.2, Relative=False),
+}
+
+
+# ------------------------------------------------------------------------------------------- the solids
+def edges_where(shape, test, samples=5):
+    """Edges of `shape` all of whose sample points (ends included) satisfy test(point)."""
+    def sample(e):
+        u0, u1 = e.FirstParameter, e.LastParameter
+        return [e.valueAt(u0 + (u1 - u0) * k / (samples - 1)) for k in range(samples)]
+    return [e for e in shape.Edges if all(test(p) for p in sample(e))]
+
+
+def extruded_profile(yz_points, length):
+    """A prism: the closed polygon yz_points (in the x = 0 plane) extruded along +x."""
+    pts = [V(0, y, z) for y, z in yz_points]
+    return Part.Face(Part.makePolygon(pts + pts[:1])).extrude(V(length, 0, 0))
+
+
+def box():
+    """Convex 90 degree edge: the top back edge of a 60 x 40 x 30 box."""
+    s = Part.makeBox(60, 40, 30)
+    return s, edges_where(s, lambda p: abs(p.y - 40) < TOL and abs(p.z - 30) < TOL)
+
+
+def lchannel():
+    """Concave 90 degree edge: the inner edge of an L-section (flange 40 x 8, web 35 x 8), 60 long."""
+    s = extruded_profile([(0, 0), (40, 0), (40, 8), (8, 8), (8, 35), (0, 35)], 60)
+    return s, edges_where(s, lambda p: abs(p.y - 8) < TOL and abs(p.z - 8) < TOL)
+
+
+DRAFT_DEG = 10.0
+
+
+def draft_shoulder():
+    """A die shoulder: binder flat z = 30 meeting a wall drafted 10 degrees (the solid's angle is 100
+    degrees), the wall running down to a floor at z = 8."""
+    foot = 25 + 22 * math.tan(math.radians(DRAFT_DEG))
+    s = extruded_profile([(0, 0), (50, 0), (50, 8), (foot, 8), (25, 30), (0, 30)], 60)
+    return s, edges_where(s, lambda p: abs(p.y - 25) < TOL and abs(p.z - 30) < TOL)
+
+
+POCKET_R = 25.0
+
+
+def pocket_rim():
+    """A closed loop: the top rim of a 25 mm radius, 10 deep circular pocket in a 62 x 62 x 20 block."""
+    block = Part.makeBox(62, 62, 20)
+    s = block.cut(Part.makeCylinder(POCKET_R, 11, V(31, 31, 10))).removeSplitter()
+    return s, edges_where(s, lambda p: abs(p.z - 20) < TOL and abs(math.hypot(p.x - 31, p.y - 31) - POCKET_R) < 1e-6)
+
+
+def s_outline():
+    """Plan view S: line, convex arc R20, concave arc R30, line -- tangent throughout, from (0,60) to (120,10)."""
+    return Part.Wire([
+        Part.LineSegment(V(0, 60, 0), V(30, 60, 0)).toShape(),
+        Part.ArcOfCircle(Part.Circle(V(30, 40, 0), V(0, 0, 1), 20), 0, math.pi / 2).toShape(),
+        Part.ArcOfCircle(Part.Circle(V(80, 40, 0), V(0, 0, 1), 30), math.pi, 1.5 * math.pi).toShape(),
+        Part.LineSegment(V(80, 10, 0), V(120, 10, 0)).toShape(),
+    ])
+
+
+def s_plate():
+    """An S-shaped chain: a 20 thick plate whose back outline is the S; the chain is its top edge along the S."""
+    s_wire = s_outline()
+    rest = Part.makePolygon([V(120, 10, 0), V(120, -20, 0), V(0, -20, 0), V(0, 60, 0)])
+    outline = Part.Wire(Part.__sortEdges__(s_wire.Edges + rest.Edges))
+    s = Part.Face(outline).extrude(V(0, 0, 20))
+    on_s = lambda p: abs(p.z - 20) < TOL and s_wire.distToShape(Part.Vertex(V(p.x, p.y, 0)))[0] < 1e-6  # noqa: E731
+    return s, edges_where(s, on_s)
+
+
+# ------------------------------------------------------------------------------------------ chain geometry
+def ordered_chain(edges):
+    """The chain's edges in order, each with a flag: True when it runs backwards (end -> start) in the chain."""
+    left = list(edges)
+    out = [(left.pop(0), False)]
+    while left:
+        tail = out[-1][0].valueAt(out[-1][0].LastParameter if not out[-1][1] else out[-1][0].FirstParameter)
+        for e in left:
+            if (e.valueAt(e.FirstParameter) - tail).Length < 1e-6:
+                out.append((e, False))
+            elif (e.valueAt(e.LastParameter) - tail).Length < 1e-6:
+                out.append((e, True))
+            else:
+                continue
+            left.remove(e)
+            break
+        else:
+            raise ValueError("the chain's edges are not connected")
+    return out
+
+
+def chain_points(edges, step):
+    """(n, 3) points along the chain, in order, at most `step` apart (ends included)."""
+    pts = []
+    for e, backwards in ordered_chain(edges):
+        n = max(2, int(math.ceil(e.Length / step)) + 1)
+        u = np.linspace(e.FirstParameter, e.LastParameter, n)
+        seg = [tuple(e.valueAt(x)) for x in (u[::-1] if backwards else u)]
+        pts += seg if not pts else seg[1:]
+    return np.array(pts)
+
+
+def arc_length(points):
+    return np.concatenate([[0.0], np.cumsum(np.linalg.norm(np.diff(points, axis=0), axis=1))])
+
+
+def is_closed(edges):
+    p = chain_points(edges, 1e9)
+    return bool(np.linalg.norm(p[0] - p[-1]) < 1e-6)
+
+
+# ---------------------------------------------------------------------------------------- fillet faces
+def fillet_faces(reference, sharp):
+    """Faces of the filleted solid that are not on the sharp solid's skin: the rounds themselves.
+    A face is tested at the centroid of its largest tessellation triangle, projected onto the face."""
+    out, skin = [], Part.Compound(sharp.Faces)  # faces, not the solid: a point inside is not "on"
+    for f in reference.Faces:
+        pts, tris = f.tessellate(0.05)
+        P = np.array([tuple(p) for p in pts])
+        T = np.array(tris)
+        area = np.linalg.norm(np.cross(P[T[:, 1]] - P[T[:, 0]], P[T[:, 2]] - P[T[:, 0]]), axis=1)
+        c = V(*P[T[area.argmax()]].mean(axis=0))
+        p = f.valueAt(*f.Surface.parameter(c))
+        if skin.distToShape(Part.Vertex(p))[0] > 1e-5:
+            out.append(f)
+    if not out:
+        raise RuntimeError("the reference fillet made no face: the case is broken")
+    return out
+
+
+def section_radius(rounds, point, tangent):
+    """Radius of the round's cross-section in the plane through `point` normal to `tangent` (circle
+    through three points of the section arc)."""
+    sec = rounds.section(Part.Plane(point, tangent).toShape())
+    arc = max(sec.Edges, key=lambda e: e.Length)
+    u0, u1 = arc.FirstParameter, arc.LastParameter
+    a, b, c = (np.array(tuple(arc.valueAt(u0 + (u1 - u0) * k))) for k in (0.1, 0.5, 0.9))
+    return float(np.linalg.norm(b - a) * np.linalg.norm(c - a) * np.linalg.norm(c - b)
+                 / (2 * np.linalg.norm(np.cross(b - a, c - a))))
+
+
+# ------------------------------------------------------------------------------------------------ cases
+class Case:
+    """One rounding task.  `law`: None for a constant radius, else [(fraction of chain length, r)] stations
+    handed to OCCT; `radius` is what MeshRound gets (a float, or [(FreeCAD.Vector, r)] control points)."""
+
+    def __init__(self, name, builder, radius, law=None):
+        self.name = name
+        self.solid, self.chain = builder()
+        self.law = law
+        self.r_max = radius if law is None else max(r for _, r in law)
+        self.tolerance = self.r_max / 100
+        self.points = chain_points(self.chain, 0.02 * self.r_max)  # the chain, densely, in order
+        self.closed = is_closed(self.chain)
+        self.reference = self._occt_fillet(radius)
+        self.rounds = fillet_faces(self.reference, self.solid)
+        self.radius = radius if law is None else self.measured_law()
+        self._meshes = {}
+
+    @property
+    def seed(self):
+        """A point on the chain, a third of the way along (away from chain ends and edge joints)."""
+        return V(*self.points[len(self.points) // 3])
+
+    def _occt_fillet(self, radius):
+        if self.law is None:
+            return self.solid.makeFillet(radius, self.chain)
+        return part_fillet_feature(self.solid, self._edge_stations())
+
+    def _edge_stations(self):
+        """(edge index, r at the edge's first parameter, r at its last) from the chain-fraction law."""
+        s_of, r_of = np.array([s for s, _ in self.law]), np.array([r for _, r in self.law])
+        total, done, out = sum(e.Length for e in self.chain), 0.0, []
+        for e, backwards in ordered_chain(self.chain):
+            r0, r1 = np.interp([done / total, (done + e.Length) / total], s_of, r_of)
+            out.append((self._index(e), *((r1, r0) if backwards else (r0, r1))))
+            done += e.Length
+        return out
+
+    def _index(self, edge):
+        return next(i for i, e in enumerate(self.solid.Edges, 1) if e.isSame(edge))
+
+    def measured_law(self, spacing=None, inset=0.3):
+        """[(point, r)]: the reference's own radius on sections normal to the chain, every ~r_max/2."""
+        P, s = self.points, arc_length(self.points)
+        spacing = spacing or 0.5 * self.r_max
+        at = np.linspace(inset, s[-1] - inset, max(3, int(s[-1] / spacing) + 1))
+        rounds = Part.Compound(self.rounds)
+        out = []
+        for x in at:
+            i = min(np.searchsorted(s, x), len(P) - 1)
+            p = np.array([np.interp(x, s, P[:, k]) for k in range(3)])
+            t = P[i] - P[i - 1]
+            out.append((V(*p), section_radius(rounds, V(*p), V(*t))))
+        return out
+
+    def mesh(self, variant):
+        """The sharp solid meshed as `variant` (see MESH_VARIANTS)."""
+        if variant not in self._meshes:
+            kw = dict(MESH_VARIANTS[variant])
+            if "MaxLength" in kw:
+                kw["MaxLength"] *= self.r_max
+            self._meshes[variant] = MeshPart.meshFromShape(Shape=self.solid, **kw)
+        return self._meshes[variant]
+
+    def __repr__(self):
+        return f"Case({self.name})"
+
+
+def part_fillet_feature(solid, stations):
+    """OCCT fillet with per-edge radii (r1 at each edge's first parameter), through a Part::Fillet feature in
+    a scratch document: Part.Shape.makeFillet takes one (r1, r2) for all edges."""
+    doc = FreeCAD.newDocument("meshround_reference")
+    try:
+        base = doc.addObject("Part::Feature", "Sharp")
+        base.Shape = solid
+        fillet = doc.addObject("Part::Fillet", "Fillet")
+        fillet.Base = base
+        fillet.Edges = [(i, float(r0), float(r1)) for i, r0, r1 in stations]
+        doc.recompute()
+        if not fillet.Shape.isValid() or fillet.Shape.isNull():
+            raise RuntimeError("OCCT could not fillet the case")
+        return fillet.Shape.copy()
+    finally:
+        FreeCAD.closeDocument(doc.Name)
+
+
+# name -> (builder, radius, law); law: [(fraction of the chain's length, radius)] or None
+SPECS = {
+    "box": (box, 5.0, None),
+    "lchannel": (lchannel, 4.0, None),
+    "draft_shoulder": (draft_shoulder, 5.0, None),
+    "pocket_rim": (pocket_rim, 3.0, None),
+    "s_chain": (s_plate, 4.0, None),
+    "box_var": (box, None, [(0.0, 2.0), (1.0, 8.0)]),
+    "lchannel_var": (lchannel, None, [(0.0, 2.0), (1.0, 6.0)]),
+    "s_chain_var3": (s_plate, None, [(0.0, 2.5), (0.5, 5.0), (1.0, 3.0)]),
+}
+CONSTANT = [n for n, spec in SPECS.items() if spec[2] is None]
+VARIABLE = [n for n, spec in SPECS.items() if spec[2] is not None]
+
+
+@functools.lru_cache(maxsize=None)
+def case(name):
+    builder, radius, law = SPECS[name]
+    return Case(name, builder, radius, law)

@@ -1,0 +1,56 @@
+"""Shared set-up of the Python tests: FreeCAD and the workbench on sys.path, small test meshes.
+
+Run with Debian's interpreter (FreeCAD 0.20's modules are built for it):  /usr/bin/python3 -m pytest tests
+"""
+import os
+import sys
+
+import pytest
+
+REPO = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+MOD_DIR = os.path.join(REPO, "Mod", "MeshRound")
+FREECAD_LIB = "/usr/lib/freecad-python3/lib"
+for _path in (FREECAD_LIB, MOD_DIR, os.path.dirname(os.path.abspath(__file__))):
+    if _path not in sys.path:
+        sys.path.append(_path)
+
+import FreeCAD  # noqa: E402
+import Mesh  # noqa: E402
+import MeshPart  # noqa: E402
+import Part  # noqa: E402
+
+# The standard case: a 100 x 60 x 40 box, its top back edge (y = 60, z = 40) picked at x = 37, r = 5.
+BOX_SIZE = (100.0, 60.0, 40.0)
+BOX_SEED = FreeCAD.Vector(37.0, 60.0, 40.0)
+BOX_OTHER_SEED = FreeCAD.Vector(37.0, 0.0, 40.0)    # the top front edge, for a second rounding
+BOX_RADIUS = 5.0
+
+
+def box_mesh(max_length=2.0):
+    return MeshPart.meshFromShape(Shape=Part.makeBox(*BOX_SIZE), MaxLength=max_length)
+
+
+@pytest.fixture(scope="session")
+def box():
+    """The box mesh (shared: tests must not modify it -- the API never does)."""
+    return box_mesh()
+
+
+@pytest.fixture
+def doc():
+    """A fresh document with undo enabled (FreeCAD disables it headless), closed afterwards."""
+    document = FreeCAD.newDocument("MeshRoundTest")
+    document.UndoMode = 1
+    name = document.Name
+    yield document
+    if name in FreeCAD.listDocuments():  # a save/reload test may have closed it already
+        FreeCAD.closeDocument(name)
+
+
+@pytest.fixture
+def box_feature(doc, box):
+    """A Mesh::Feature holding the box mesh, recomputed."""
+    feature = doc.addObject("Mesh::Feature", "Box")
+    feature.Mesh = box
+    doc.recompute()
+    return feature

@@ -1,0 +1,190 @@
+"""MeshRound.round_edges / trace_chains: results, immutability of the input, and every bad input."""
+import json
+import math
+import time
+
+import numpy as np
+import pytest
+
+import FreeCAD
+import Mesh
+import Part
+
+import MeshRound
+from MeshRound import meshconv
+from conftest import BOX_OTHER_SEED, BOX_RADIUS, BOX_SEED
+
+REPORT_KEYS = {"chains", "facets_removed", "facets_added", "max_deviation", "min_new_angle_deg",
+               "seconds", "facets_in", "facets_out"}
+
+
+@pytest.fixture(scope="module")
+def rounded(box):
+    return MeshRound.round_edges(box, BOX_SEED, BOX_RADIUS)
+
+
+def near_edge(points, y=60.0, z=40.0, distance=2 * BOX_RADIUS):
+    """Which points lie within `distance` of the line y = y, z = z."""
+    return np.hypot(points[:, 1] - y, points[:, 2] - z) < distance
+
+
+def test_result_mesh_changes_only_near_the_edge(box, rounded):
+    assert isinstance(rounded.mesh, Mesh.Mesh)
+    before, _ = meshconv.mesh_to_arrays(box)
+    after, _ = meshconv.mesh_to_arrays(rounded.mesh)
+    assert rounded.mesh.CountFacets != box.CountFacets or not np.array_equal(before, after)
+    # points that are not points of the input are new: they all lie near the rounded edge
+    old = {tuple(p) for p in before.round(4).tolist()}
+    new_points = np.array([p for p in after.round(4).tolist() if tuple(p) not in old])
+    assert len(new_points) > 0
+    assert near_edge(new_points).all()
+    # the round removes the sharp corner: nothing is left within r of the corner line but the round
+    corner_distance = np.hypot(after[:, 1] - 60.0, after[:, 2] - 40.0)
+    on_round = corner_distance < BOX_RADIUS * (math.sqrt(2) - 1) * 0.9
+    assert not on_round.any(), "the sharp corner is still there"
+
+
+def test_result_mesh_is_closed_and_bounded_like_the_box(box, rounded):
+    assert rounded.mesh.isSolid()
+    bb, bb0 = rounded.mesh.BoundBox, box.BoundBox
+    assert (bb.XLength, bb.YLength, bb.ZLength) == pytest.approx((bb0.XLength, bb0.YLength, bb0.ZLength),
+                                                                abs=1e-3)
+    # volume removed: (1 - pi / 4) r^2 per mm of edge
+    removed = box.Volume - rounded.mesh.Volume
+    assert removed == pytest.approx((1 - math.pi / 4) * BOX_RADIUS ** 2 * 100.0, rel=0.05)
+
+
+def test_surfaces_spines_chains_contacts(rounded):
+    assert len(rounded.surfaces) == 1
+    for face in rounded.surfaces:
+        assert isinstance(face, Part.Face)
+        assert isinstance(face.Surface, Part.BSplineSurface)
+    for wires in (rounded.spines, rounded.chains):
+        assert len(wires) == 1 and all(isinstance(w, Part.Wire) for w in wires)
+    assert len(rounded.contacts) == 2 and all(isinstance(w, Part.Wire) for w in rounded.contacts)
+    assert rounded.chains[0].Length == pytest.approx(100.0, abs=1e-6)
+    # the ball centre runs at r from both faces: y = 60 - r, z = 40 - r
+    for vertex in rounded.spines[0].Vertexes:
+        assert (vertex.Point.y, vertex.Point.z) == pytest.approx((60 - BOX_RADIUS, 40 - BOX_RADIUS), abs=1e-6)
+
+
+def test_report(rounded):
+    report = rounded.report
+    assert REPORT_KEYS <= set(report)
+    assert report["chains"] == 1
+    assert report["facets_removed"] > 0 and report["facets_added"] > 0
+    assert 0 <= report["max_deviation"] <= BOX_RADIUS / 100 * 1.5
+    assert report["seconds"] > 0
+    json.dumps(report)  # plain Python numbers only: the CLI writes it as JSON
+
+
+def test_input_mesh_is_not_modified(box):
+    before = box.Topology
+    placement = box.Placement
+    MeshRound.round_edges(box, [BOX_SEED, BOX_OTHER_SEED], BOX_RADIUS)
+    assert box.Topology == before
+    assert box.Placement == placement
+
+
+def test_seed_forms_and_two_chains(box):
+    result = MeshRound.round_edges(box, [tuple(BOX_SEED), list(BOX_OTHER_SEED)], BOX_RADIUS)
+    assert result.report["chains"] == 2
+    assert len(result.surfaces) == 2
+
+
+def test_variable_radius(box):
+    law = [(FreeCAD.Vector(0, 60, 40), 3.0), (FreeCAD.Vector(100, 60, 40), 6.0)]
+    result = MeshRound.round_edges(box, BOX_SEED, law)
+    assert result.report["chains"] == 1
+    # the radius grows along x: the ball centre is further from the corner at x = 100 than at x = 0
+    spine = sorted((v.Point for v in result.spines[0].Vertexes), key=lambda p: p.x)
+    assert 60 - spine[0].y == pytest.approx(3.0, abs=0.05)
+    assert 60 - spine[-1].y == pytest.approx(6.0, abs=0.05)
+
+
+def test_trace_chains(box):
+    wires = MeshRound.trace_chains(box, BOX_SEED)
+    assert len(wires) == 1 and isinstance(wires[0], Part.Wire)
+    assert wires[0].Length == pytest.approx(100.0, abs=1e-6)
+
+
+def test_deterministic(box, rounded):
+    again = MeshRound.round_edges(box, BOX_SEED, BOX_RADIUS)
+    assert again.mesh.Topology == rounded.mesh.Topology
+
+
+@pytest.mark.parametrize("mesh, seeds, radius, expected", [
+    ("empty", BOX_SEED, BOX_RADIUS, "empty"),
+    ("not a mesh", BOX_SEED, BOX_RADIUS, "Mesh.Mesh"),
+    ("part shape", BOX_SEED, BOX_RADIUS, "Mesh.Mesh"),
+    ("box", BOX_SEED, 0.0, "radius"),
+    ("box", BOX_SEED, -2.0, "radius"),
+    ("box", BOX_SEED, float("nan"), "radius"),
+    ("box", BOX_SEED, float("inf"), "radius"),
+    ("box", BOX_SEED, "5", "radius"),
+    ("box", BOX_SEED, [(BOX_SEED, 0.0)], "radius"),
+    ("box", BOX_SEED, [], "control point"),
+    ("box", (50.0, 30.0, 20.0), BOX_RADIUS, "sharp edge"),  # the middle of the box: no edge near
+    ("box", [], BOX_RADIUS, "seed"),
+    ("box", "abc", BOX_RADIUS, "seeds"),
+    ("box", [(1.0, 2.0)], BOX_RADIUS, "seeds"),
+    ("box", (float("nan"), 0.0, 0.0), BOX_RADIUS, "finite"),
+])
+def test_bad_input_raises_rounding_error(box, mesh, seeds, radius, expected):
+    meshes = {"box": box, "empty": Mesh.Mesh(), "not a mesh": "box.stl", "part shape": Part.makeBox(1, 1, 1)}
+    with pytest.raises(MeshRound.RoundingError, match=expected) as info:
+        MeshRound.round_edges(meshes[mesh], seeds, radius)
+    assert isinstance(info.value, ValueError)
+
+
+@pytest.mark.parametrize("keyword, value", [
+    ("tolerance", -1.0), ("tolerance", float("nan")), ("feature_angle", 0.0), ("feature_angle", 180.0),
+    ("reach", 0.0), ("reach", float("nan")),
+])
+def test_bad_options_raise_rounding_error(box, keyword, value):
+    with pytest.raises(MeshRound.RoundingError, match=keyword):
+        MeshRound.round_edges(box, BOX_SEED, BOX_RADIUS, **{keyword: value})
+
+
+def test_trace_chains_far_seed_raises(box):
+    with pytest.raises(MeshRound.RoundingError):
+        MeshRound.trace_chains(box, (50.0, 30.0, 20.0))
+
+
+def test_rounding_error_is_the_engines_class():
+    from MeshRound import _meshround_core
+    assert MeshRound.RoundingError is _meshround_core.RoundingError
+    assert issubclass(MeshRound.RoundingError, ValueError)
+
+
+def test_mesh_array_round_trip_keeps_order_and_placement(box):
+    moved = box.copy()
+    moved.Placement = FreeCAD.Placement(FreeCAD.Vector(10, 20, 30), FreeCAD.Rotation())
+    vertices, triangles = meshconv.mesh_to_arrays(moved)
+    points, facets = moved.Topology
+    assert np.allclose(vertices, [tuple(p) for p in points], atol=1e-4)
+    assert np.array_equal(triangles, facets)
+    back = meshconv.arrays_to_mesh(vertices, triangles)
+    assert back.Topology[1] == facets
+
+
+def test_mesh_array_conversion_is_fast():
+    """1M facets both ways well under a second each (no per-facet Python loop)."""
+    n = 708
+    u, v = np.meshgrid(np.linspace(0, 100, n), np.linspace(0, 100, n))
+    vertices = np.column_stack([u.ravel(), v.ravel(), np.sin(u.ravel() / 9) * 5])
+    index = np.arange(n * n).reshape(n, n)
+    a, b, c, d = (index[:-1, :-1].ravel(), index[:-1, 1:].ravel(), index[1:, 1:].ravel(),
+                  index[1:, :-1].ravel())
+    triangles = np.vstack([np.column_stack([a, b, c]), np.column_stack([a, c, d])])
+    assert len(triangles) > 999_000
+    started = time.perf_counter()
+    mesh = meshconv.arrays_to_mesh(vertices, triangles)
+    to_mesh = time.perf_counter() - started
+    started = time.perf_counter()
+    vertices2, triangles2 = meshconv.mesh_to_arrays(mesh)
+    to_arrays = time.perf_counter() - started
+    assert np.array_equal(triangles2, triangles)
+    assert np.allclose(vertices2, vertices, atol=1e-4)
+    print(f"1M facets: arrays -> mesh {to_mesh:.3f} s, mesh -> arrays {to_arrays:.3f} s")
+    assert to_mesh < 1.0 and to_arrays < 1.0

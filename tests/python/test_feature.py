@@ -1,0 +1,219 @@
+"""The parametric Rounding feature: recompute, chaining, expressions, save/reload, undo/redo, failures."""
+import os
+
+import pytest
+
+import FreeCAD
+import Part
+
+import MeshRound
+from MeshRound.objects.surfaces import surfaces_of
+from conftest import BOX_OTHER_SEED, BOX_RADIUS, BOX_SEED
+
+import Spreadsheet  # noqa: F401,E402  (registers Spreadsheet::Sheet)
+
+
+def is_invalid(obj):
+    return "Invalid" in obj.State
+
+
+@pytest.fixture
+def rounding(doc, box_feature):
+    obj = MeshRound.make_rounding(box_feature, BOX_SEED, BOX_RADIUS)
+    doc.recompute()
+    assert not is_invalid(obj), obj.getStatusString()
+    return obj
+
+
+def test_make_rounding_and_recompute(box_feature, rounding):
+    assert rounding.TypeId == "Mesh::FeaturePython"
+    assert rounding.Name == "Rounding"
+    assert rounding.Base == box_feature
+    assert rounding.Mesh.CountFacets != box_feature.Mesh.CountFacets
+    assert rounding.Mesh.isSolid()
+    assert int(rounding.Statistics["chains"]) == 1
+    assert rounding.Radius.Value == BOX_RADIUS and rounding.Reach == 3.0
+    assert rounding.FeatureAngle.Value == 30.0 and rounding.Tolerance.Value == 0.0
+
+
+def test_surfaces_child_shows_the_rounding_faces(doc, rounding):
+    children = surfaces_of(rounding)
+    assert len(children) == 1
+    surfaces = children[0]
+    assert surfaces.Name == "RoundingSurfaces" and surfaces.isDerivedFrom("Part::Feature")
+    assert len(surfaces.Shape.Faces) == 1
+    assert isinstance(surfaces.Shape.Faces[0].Surface, Part.BSplineSurface)
+    assert "Touched" not in rounding.State and "Touched" not in surfaces.State  # no recompute loop
+    assert doc.recompute() == 0  # nothing left to do
+
+
+def test_base_is_not_modified(box_feature, box, rounding):
+    assert box_feature.Mesh.Topology == box.Topology
+
+
+def test_rounding_of_a_rounding(doc, rounding):
+    second = MeshRound.make_rounding(rounding, BOX_OTHER_SEED, 3.0)
+    doc.recompute()
+    assert not is_invalid(second), second.getStatusString()
+    assert second.Name == "Rounding001" and second.Base == rounding
+    assert second.Mesh.Volume < rounding.Mesh.Volume
+    assert len(surfaces_of(second)) == 1 and len(surfaces_of(rounding)) == 1
+    # changing the first re-rounds the second
+    before = second.Mesh.Topology
+    rounding.Radius = 6.0
+    doc.recompute()
+    assert second.Mesh.Topology != before
+
+
+def test_radius_expression_from_spreadsheet(doc, rounding):
+    sheet = doc.addObject("Spreadsheet::Sheet", "Spreadsheet")
+    sheet.set("A1", "7")
+    sheet.setAlias("A1", "r")
+    doc.recompute()
+    before = rounding.Mesh.Topology
+    rounding.setExpression("Radius", "Spreadsheet.r")
+    doc.recompute()
+    assert rounding.Radius.Value == 7.0
+    assert rounding.Mesh.Topology != before
+    seven = rounding.Mesh.Topology
+    sheet.set("A1", "4")
+    doc.recompute()
+    assert rounding.Radius.Value == 4.0
+    assert rounding.Mesh.Topology != seven
+
+
+def test_variable_radius_law(doc, box_feature):
+    law = [(FreeCAD.Vector(0, 60, 40), 3.0), (FreeCAD.Vector(100, 60, 40), 6.0)]
+    obj = MeshRound.make_rounding(box_feature, BOX_SEED, law)
+    doc.recompute()
+    assert not is_invalid(obj), obj.getStatusString()
+    assert [tuple(p) for p in obj.RadiusLawPoints] == [(0, 60, 40), (100, 60, 40)]
+    assert obj.RadiusLawRadii == [3.0, 6.0]
+    assert obj.Radius.Value == 6.0
+
+
+def test_save_and_reload_give_the_identical_mesh(doc, rounding, tmp_path):
+    path = str(tmp_path / "rounding.FCStd")
+    topology = rounding.Mesh.Topology
+    faces = surfaces_of(rounding)[0].Shape.Faces
+    doc.saveAs(path)
+    FreeCAD.closeDocument(doc.Name)
+    reopened = FreeCAD.openDocument(path)
+    try:
+        obj = reopened.getObject("Rounding")
+        assert isinstance(obj.Proxy, MeshRound.objects.rounding.Rounding)
+        assert obj.Mesh.Topology == topology  # stored in the file, bit for bit
+        assert len(reopened.getObject("RoundingSurfaces").Shape.Faces) == len(faces)
+        obj.touch()
+        reopened.recompute()
+        assert not is_invalid(obj)
+        assert obj.Mesh.Topology == topology  # and the engine is deterministic
+    finally:
+        FreeCAD.closeDocument(reopened.Name)
+
+
+def test_reload_adds_missing_properties(doc, rounding, tmp_path):
+    """A file from an older version (a property missing) still loads and gets the property back."""
+    rounding.removeProperty("Reach")
+    path = str(tmp_path / "old.FCStd")
+    doc.saveAs(path)
+    FreeCAD.closeDocument(doc.Name)
+    reopened = FreeCAD.openDocument(path)
+    try:
+        obj = reopened.getObject("Rounding")
+        assert obj.Reach == 3.0
+        reopened.recompute()
+        assert not is_invalid(obj), obj.getStatusString()
+    finally:
+        FreeCAD.closeDocument(reopened.Name)
+
+
+def test_undo_redo(doc, box_feature):
+    doc.openTransaction("Round edges")
+    obj = MeshRound.make_rounding(box_feature, BOX_SEED, BOX_RADIUS)
+    doc.recompute()
+    doc.commitTransaction()
+    first = obj.Mesh.Topology
+
+    doc.openTransaction("Radius")
+    obj.Radius = 8.0
+    doc.recompute()
+    doc.commitTransaction()
+    second = obj.Mesh.Topology
+    assert second != first
+
+    doc.undo()
+    assert obj.Radius.Value == BOX_RADIUS and obj.Mesh.Topology == first
+    doc.redo()
+    assert obj.Radius.Value == 8.0 and obj.Mesh.Topology == second
+    doc.undo()
+    doc.undo()
+    assert doc.getObject("Rounding") is None and doc.getObject("RoundingSurfaces") is None
+    doc.redo()
+    assert doc.getObject("Rounding") is not None
+
+
+@pytest.mark.parametrize("change", [
+    "radius zero", "radius nan", "seed far", "no seeds", "law mismatch", "no base", "part base",
+    "empty base", "feature angle"])
+def test_bad_input_marks_the_feature_invalid(doc, box_feature, box, rounding, change):
+    good = rounding.Mesh.Topology
+    if change == "radius zero":
+        rounding.Radius = 0.0
+    elif change == "radius nan":
+        rounding.Radius = float("nan")
+    elif change == "seed far":
+        rounding.Seeds = [FreeCAD.Vector(50, 30, 20)]
+    elif change == "no seeds":
+        rounding.Seeds = []
+    elif change == "law mismatch":
+        rounding.RadiusLawPoints = [BOX_SEED]
+    elif change == "no base":
+        rounding.Base = None
+    elif change == "part base":
+        rounding.Base = doc.addObject("Part::Box", "PartBox")
+    elif change == "empty base":
+        rounding.Base = doc.addObject("Mesh::Feature", "Empty")
+    elif change == "feature angle":
+        rounding.FeatureAngle = 0.0
+    doc.recompute()
+    assert is_invalid(rounding)
+    assert rounding.getStatusString()  # the cause, as FreeCAD shows it
+    assert rounding.Mesh.Topology == good  # the last good mesh stays
+    assert box_feature.Mesh.Topology == box.Topology
+    assert not is_invalid(box_feature)
+
+
+def test_feature_recovers_after_a_failure(doc, rounding):
+    rounding.Radius = 0.0
+    doc.recompute()
+    assert is_invalid(rounding)
+    rounding.Radius = 4.0
+    doc.recompute()
+    assert not is_invalid(rounding)
+
+
+@pytest.mark.parametrize("kwargs, expected", [
+    (dict(radius=-1.0), "radius"), (dict(radius=float("nan")), "radius"), (dict(seeds="x"), "seeds"),
+    (dict(seeds=[]), "seed"), (dict(feature_angle=200.0), "feature_angle"), (dict(reach=0.0), "reach"),
+])
+def test_make_rounding_rejects_bad_arguments(doc, box_feature, kwargs, expected):
+    arguments = dict(base=box_feature, seeds=BOX_SEED, radius=BOX_RADIUS)
+    arguments.update(kwargs)
+    with pytest.raises(MeshRound.RoundingError, match=expected):
+        MeshRound.make_rounding(**arguments)
+    assert [o.Name for o in doc.Objects] == ["Box"]
+
+
+def test_make_rounding_rejects_a_part_base(doc):
+    part = doc.addObject("Part::Box", "PartBox")
+    doc.recompute()
+    with pytest.raises(MeshRound.RoundingError, match="not a mesh"):
+        MeshRound.make_rounding(part, BOX_SEED, BOX_RADIUS)
+
+
+def test_surfaces_export_to_step(rounding, tmp_path):
+    path = str(tmp_path / "surfaces.step")
+    surfaces_of(rounding)[0].Shape.exportStep(path)
+    assert os.path.getsize(path) > 0
+    assert len(Part.read(path).Faces) == 1
