@@ -7,4 +7,4 @@ ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 "$ROOT/tools/setup.sh"
 cd "$ROOT"
 ctest --test-dir build --output-on-failure -j2
-/usr/bin/python3 -m pytest -q -p no:cacheprovider tests/python tests/gui
+/usr/bin/python3 -m pytest -q -p no:cacheprovider tests
