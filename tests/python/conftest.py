@@ -10,14 +10,20 @@ import pytest
 REPO = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 MOD_DIR = os.path.join(REPO, "Mod", "MeshRound")
 FREECAD_LIB = "/usr/lib/freecad-python3/lib"
-for _path in (FREECAD_LIB, MOD_DIR, os.path.dirname(os.path.abspath(__file__))):
+for _path in (FREECAD_LIB, os.path.dirname(os.path.abspath(__file__))):
     if _path not in sys.path:
         sys.path.append(_path)
 
 import FreeCAD  # noqa: E402
-import Mesh  # noqa: E402
 import MeshPart  # noqa: E402
 import Part  # noqa: E402
+
+# `import FreeCAD` puts the user's Mod folders first on sys.path, and an installed copy of the workbench
+# (cmake --install: ~/.local/share/FreeCAD/Mod/MeshRound) would shadow this source tree: test the tree.
+sys.path.insert(0, MOD_DIR)
+import MeshRound  # noqa: E402
+
+assert os.path.dirname(MeshRound.__file__) == os.path.join(MOD_DIR, "MeshRound"), MeshRound.__file__
 
 # The standard case: a 100 x 60 x 40 box, its top back edge (y = 60, z = 40) picked at x = 37, r = 5.
 BOX_SIZE = (100.0, 60.0, 40.0)

@@ -102,6 +102,13 @@ def test_variable_radius(box):
     assert 60 - spine[-1].y == pytest.approx(6.0, abs=0.05)
 
 
+def test_round_arrays_gives_arrays_and_a_matching_mesh(box, rounded):
+    vertices, triangles = meshconv.mesh_to_arrays(box)
+    result = MeshRound.api.round_arrays(vertices, triangles, BOX_SEED, BOX_RADIUS)
+    assert result.vertices.shape[1] == 3 and result.triangles.dtype == np.int64
+    assert result.mesh.Topology == rounded.mesh.Topology  # same engine run as round_edges'
+
+
 def test_trace_chains(box):
     wires = MeshRound.trace_chains(box, BOX_SEED)
     assert len(wires) == 1 and isinstance(wires[0], Part.Wire)

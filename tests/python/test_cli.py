@@ -94,6 +94,14 @@ def test_errors(inputs, tmp_path, case, args, status, message):
         assert os.listdir(tmp_path) == []  # not even a temporary file
 
 
+def test_report_folder_missing_leaves_no_output(inputs, tmp_path):
+    out = tmp_path / "o.stl"
+    run = meshround("round", inputs / "box.stl", out, "--seed", SEED, "--radius", 5,
+                    "--report", tmp_path / "nofolder" / "r.json")
+    assert run.returncode == 1 and "cannot write" in run.stderr
+    assert os.listdir(tmp_path) == []  # neither the mesh nor a temporary file
+
+
 def test_usage_without_command():
     run = meshround()
     assert run.returncode == 2 and "usage" in run.stderr

@@ -7,7 +7,6 @@ import FreeCAD
 import Part
 
 import MeshRound
-from MeshRound.objects.surfaces import surfaces_of
 from conftest import BOX_OTHER_SEED, BOX_RADIUS, BOX_SEED
 
 import Spreadsheet  # noqa: F401,E402  (registers Spreadsheet::Sheet)
@@ -37,14 +36,28 @@ def test_make_rounding_and_recompute(box_feature, rounding):
 
 
 def test_surfaces_child_shows_the_rounding_faces(doc, rounding):
-    children = surfaces_of(rounding)
-    assert len(children) == 1
-    surfaces = children[0]
-    assert surfaces.Name == "RoundingSurfaces" and surfaces.isDerivedFrom("Part::Feature")
+    surfaces = rounding.Surfaces
+    assert surfaces.Name == "RoundingSurfaces" and surfaces.TypeId == "Part::Feature"
     assert len(surfaces.Shape.Faces) == 1
     assert isinstance(surfaces.Shape.Faces[0].Surface, Part.BSplineSurface)
     assert "Touched" not in rounding.State and "Touched" not in surfaces.State  # no recompute loop
     assert doc.recompute() == 0  # nothing left to do
+
+
+def test_surfaces_follow_a_recompute(doc, rounding):
+    area = rounding.Surfaces.Shape.Area
+    rounding.Radius = 8.0
+    doc.recompute()
+    assert rounding.Surfaces.Shape.Area > area * 1.4  # the arc grows with r
+    assert "Touched" not in rounding.Surfaces.State and doc.recompute() == 0
+
+
+def test_deleting_the_surfaces_child_keeps_the_rounding_working(doc, rounding):
+    doc.removeObject("RoundingSurfaces")
+    assert rounding.Surfaces is None
+    rounding.Radius = 6.0
+    doc.recompute()
+    assert not is_invalid(rounding), rounding.getStatusString()
 
 
 def test_base_is_not_modified(box_feature, box, rounding):
@@ -57,7 +70,7 @@ def test_rounding_of_a_rounding(doc, rounding):
     assert not is_invalid(second), second.getStatusString()
     assert second.Name == "Rounding001" and second.Base == rounding
     assert second.Mesh.Volume < rounding.Mesh.Volume
-    assert len(surfaces_of(second)) == 1 and len(surfaces_of(rounding)) == 1
+    assert second.Surfaces.Name == "Rounding001Surfaces" and rounding.Surfaces.Name == "RoundingSurfaces"
     # changing the first re-rounds the second
     before = second.Mesh.Topology
     rounding.Radius = 6.0
@@ -95,7 +108,7 @@ def test_variable_radius_law(doc, box_feature):
 def test_save_and_reload_give_the_identical_mesh(doc, rounding, tmp_path):
     path = str(tmp_path / "rounding.FCStd")
     topology = rounding.Mesh.Topology
-    faces = surfaces_of(rounding)[0].Shape.Faces
+    faces = rounding.Surfaces.Shape.Faces
     doc.saveAs(path)
     FreeCAD.closeDocument(doc.Name)
     reopened = FreeCAD.openDocument(path)
@@ -103,7 +116,7 @@ def test_save_and_reload_give_the_identical_mesh(doc, rounding, tmp_path):
         obj = reopened.getObject("Rounding")
         assert isinstance(obj.Proxy, MeshRound.objects.rounding.Rounding)
         assert obj.Mesh.Topology == topology  # stored in the file, bit for bit
-        assert len(reopened.getObject("RoundingSurfaces").Shape.Faces) == len(faces)
+        assert obj.Surfaces.Name == "RoundingSurfaces" and len(obj.Surfaces.Shape.Faces) == len(faces)
         obj.touch()
         reopened.recompute()
         assert not is_invalid(obj)
@@ -212,8 +225,19 @@ def test_make_rounding_rejects_a_part_base(doc):
         MeshRound.make_rounding(part, BOX_SEED, BOX_RADIUS)
 
 
+def test_make_rounding_in_the_base_document_only(doc, box_feature):
+    other = FreeCAD.newDocument("MeshRoundOther")
+    try:
+        assert MeshRound.make_rounding(box_feature, BOX_SEED, BOX_RADIUS, doc=doc).Document.Name == doc.Name
+        with pytest.raises(MeshRound.RoundingError, match="document"):
+            MeshRound.make_rounding(box_feature, BOX_SEED, BOX_RADIUS, doc=other)
+        assert other.Objects == []
+    finally:
+        FreeCAD.closeDocument(other.Name)
+
+
 def test_surfaces_export_to_step(rounding, tmp_path):
     path = str(tmp_path / "surfaces.step")
-    surfaces_of(rounding)[0].Shape.exportStep(path)
+    rounding.Surfaces.Shape.exportStep(path)
     assert os.path.getsize(path) > 0
     assert len(Part.read(path).Faces) == 1

@@ -4,18 +4,17 @@
     res = MeshRound.round_edges(mesh, seeds, radius, tolerance=None, feature_angle=30.0, reach=3.0)
     res.mesh, res.surfaces, res.spines, res.chains, res.contacts, res.report
 
-This module is the only user of the compiled engine.  It validates in Python first (so every bad input is
+Only this module calls the compiled engine (errors.py imports it for its exception class).  It validates in Python first (so every bad input is
 a RoundingError with a clear message), converts the mesh to arrays once, calls the engine, and turns its
 plain outputs into FreeCAD objects.  The *_arrays variants skip the mesh conversion for callers that keep
 the arrays (the task panel traces a chain on every pick).
 """
 import dataclasses
+import functools
 import math
 import time
 
 import numpy as np
-
-import Mesh  # noqa: F401  (FreeCAD's Mesh module must be loaded before meshconv uses it)
 
 from . import inputs, meshconv, shapes
 from .errors import RoundingError, require_core
@@ -27,12 +26,18 @@ __all__ = ["RoundingError", "RoundingResult", "round_edges", "round_arrays", "tr
 @dataclasses.dataclass
 class RoundingResult:
     """What one rounding produced; `mesh` is new, the input mesh is never modified."""
-    mesh: object        # Mesh.Mesh: the rounded mesh
+    vertices: np.ndarray  # float64 (n, 3): the rounded mesh as arrays ...
+    triangles: np.ndarray  # int64 (m, 3)
     surfaces: list      # Part.Face on a Part.BSplineSurface: the exact rolling-ball surface, per chain
     spines: list        # Part.Wire: the ball-centre path, per chain
     chains: list        # Part.Wire: the sharp-edge chains that were rounded
     contacts: list      # Part.Wire: the ball's contact lines, two per chain (side A, side B)
     report: dict        # JSON-ready numbers: chains, facets_removed, facets_added, max_deviation, ...
+
+    @functools.cached_property
+    def mesh(self):
+        """... and as a Mesh.Mesh, built on first use (a preview that only draws arrays skips it)."""
+        return meshconv.arrays_to_mesh(self.vertices, self.triangles)
 
     def __repr__(self):
         r = self.report
@@ -53,16 +58,21 @@ def round_edges(mesh, seeds, radius, tolerance=None, feature_angle=30.0, reach=3
     inputs.check_mesh(mesh)
     arguments = _engine_arguments(seeds, radius, tolerance, feature_angle, reach)
     vertices, triangles = meshconv.mesh_to_arrays(mesh)
-    return _round(vertices, triangles, arguments, started)
+    result = _round(vertices, triangles, arguments)
+    result.mesh  # noqa: B018  (build it now: part of this call's cost, and of report["seconds"])
+    result.report["seconds"] = time.perf_counter() - started
+    return result
 
 
 def round_arrays(vertices, triangles, seeds, radius, tolerance=None, feature_angle=30.0, reach=3.0):
-    """round_edges for a mesh already given as vertices (n, 3) and triangles (m, 3)."""
+    """round_edges for a mesh given as vertices (n, 3) and triangles (m, 3); result.mesh is built lazily."""
     started = time.perf_counter()
     if len(triangles) == 0:
         raise RoundingError("mesh is empty: it has no facets")
     arguments = _engine_arguments(seeds, radius, tolerance, feature_angle, reach)
-    return _round(vertices, triangles, arguments, started)
+    result = _round(vertices, triangles, arguments)
+    result.report["seconds"] = time.perf_counter() - started
+    return result
 
 
 def trace_chains(mesh, seeds, feature_angle=30.0):
@@ -93,7 +103,7 @@ def _engine_arguments(seeds, radius, tolerance, feature_angle, reach):
     )
 
 
-def _round(vertices, triangles, arguments, started):
+def _round(vertices, triangles, arguments):
     vertices = np.ascontiguousarray(vertices, dtype=np.float64)
     triangles = np.ascontiguousarray(triangles, dtype=np.int64)
     seeds = arguments.pop("seeds")
@@ -103,15 +113,14 @@ def _round(vertices, triangles, arguments, started):
     contacts = [side for pair in raw["contacts"] for side in pair]
     closed = list(raw["closed"])
     result = RoundingResult(
-        mesh=meshconv.arrays_to_mesh(out_vertices, out_triangles),
+        vertices=out_vertices, triangles=out_triangles,
         surfaces=shapes.faces_from_brep(raw["faces"]),
         spines=shapes.polyline_wires(raw["spines"], closed),
         chains=shapes.polyline_wires(raw["chains"], closed),
         contacts=shapes.polyline_wires(contacts, [c for c in closed for _ in (0, 1)]),
         report=_json_ready(raw["report"]),
     )
-    result.report.update(facets_in=len(triangles), facets_out=len(out_triangles),
-                         seconds=time.perf_counter() - started)
+    result.report.update(facets_in=len(triangles), facets_out=len(out_triangles))
     return result
 
 
@@ -131,7 +140,7 @@ def _call_engine(name, *args, **kwargs):
 def _checked_mesh_arrays(vertices, triangles):
     """The engine's mesh as arrays, refused if it could not be turned into a valid Mesh.Mesh."""
     vertices = np.asarray(vertices, dtype=np.float64).reshape(-1, 3)
-    triangles = np.asarray(triangles).reshape(-1, 3)
+    triangles = np.asarray(triangles, dtype=np.int64).reshape(-1, 3)
     if len(triangles) == 0:
         raise RoundingError("the engine returned an empty mesh")
     if triangles.min() < 0 or triangles.max() >= len(vertices) or not np.all(np.isfinite(vertices)):

@@ -133,10 +133,11 @@ def run_round(args):
                                        feature_angle=args.feature_angle, reach=args.reach)
     except MeshRound.RoundingError as exc:
         raise Failure(f"rounding failed: {exc}") from exc
-    _write_atomically(args.output, result.mesh.write)
+    report = dict(result.report, input=args.input, output=args.output)
+    writes = [(args.output, result.mesh.write)]
     if args.report:
-        report = dict(result.report, input=args.input, output=args.output)
-        _write_atomically(args.report, lambda path: _dump_json(report, path))
+        writes.append((args.report, lambda path: _dump_json(report, path)))
+    _write_all_or_nothing(writes)
     r = result.report
     print(f"meshround: {r.get('chains')} chain(s) rounded, {r.get('facets_in')} -> {r.get('facets_out')} "
           f"facets, max deviation {r.get('max_deviation')}, {r.get('seconds', 0.0):.2f} s -> {args.output}")
@@ -179,23 +180,33 @@ def _read_mesh(Mesh, path):
     return mesh
 
 
-def _write_atomically(path, write):
-    """Call write(temp_path) for a temporary file beside `path`, then rename it to `path`."""
-    folder = os.path.dirname(os.path.abspath(path))
-    name = os.path.basename(path)
-    stem, ext = os.path.splitext(name)
-    try:  # the temporary file keeps the extension: FreeCAD picks the format from it
-        handle, temp = tempfile.mkstemp(prefix=f".{stem}.", suffix=ext, dir=folder)
-        os.close(handle)
-    except OSError as exc:
-        raise Failure(f"cannot write '{path}': {exc}") from exc
+def _write_all_or_nothing(writes):
+    """For each (path, write): write(temp) into a temporary file beside path; only when every write has
+    succeeded are the temporary files renamed to their paths, so a failure leaves none of them."""
+    staged = []  # (temporary file, final path)
+    current = None
     try:
-        write(temp)
-        os.replace(temp, path)
-    except Exception as exc:
-        if os.path.exists(temp):
-            os.remove(temp)
-        raise Failure(f"cannot write '{path}': {exc}") from exc
+        for current, write in writes:
+            temp = _temporary_beside(current)
+            staged.append((temp, current))
+            write(temp)
+        for temp, current in staged:
+            os.replace(temp, current)
+    except Exception as exc:  # OSError, or FreeCAD's own exception types from the mesh writer
+        raise Failure(f"cannot write '{current}': {exc}") from exc
+    finally:
+        for temp, _ in staged:
+            if os.path.exists(temp):
+                os.remove(temp)
+
+
+def _temporary_beside(path):
+    """A new empty file next to `path`, keeping its extension (FreeCAD picks the format from it)."""
+    stem, ext = os.path.splitext(os.path.basename(path))
+    folder = os.path.dirname(os.path.abspath(path))
+    handle, temp = tempfile.mkstemp(prefix=f".{stem}.", suffix=ext, dir=folder)
+    os.close(handle)
+    return temp
 
 
 def _dump_json(data, path):

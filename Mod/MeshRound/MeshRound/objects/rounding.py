@@ -12,17 +12,16 @@ Properties (group "Rounding"):
   Tolerance        App::PropertyLength      chordal tolerance, 0 = largest radius / 100
   FeatureAngle     App::PropertyAngle       an edge is sharp when its facets turn by at least this
   Reach            App::PropertyFloat       facets within Reach * r of a chain are re-meshed
-  SurfaceShape     Part::PropertyPartShape  (hidden output) compound of the rolling-ball faces; the child
-                                            "RoundingSurfaces" feature shows it in the tree (STEP export)
+  Surfaces         App::PropertyLink        (read-only) the "RoundingSurfaces" Part::Feature child whose
+                                            Shape is the compound of the rolling-ball faces (STEP export)
   Statistics       App::PropertyMap         (read-only output) the engine's report of the last recompute
 
 execute() never touches Base; on failure it raises, FreeCAD marks the feature invalid and prints why.
 The class path MeshRound.objects.rounding.Rounding is stored in .FCStd files: keep it stable.
 """
 import FreeCAD
-import Part  # noqa: F401  (registers Part::PropertyPartShape before a file with one is restored)
 
-from .. import api, inputs, shapes
+from .. import api, inputs
 from ..errors import RoundingError
 from ..progress import busy
 from . import surfaces as surfaces_feature
@@ -42,11 +41,11 @@ PROPERTIES = [
     ("App::PropertyLength", "Tolerance", "Chordal tolerance of the new facets; 0 = radius / 100", 0.0),
     ("App::PropertyAngle", "FeatureAngle", "An edge is sharp when its facets turn by at least this", 30.0),
     ("App::PropertyFloat", "Reach", "Facets within Reach x radius of a chain are re-meshed", 3.0),
-    ("Part::PropertyPartShape", "SurfaceShape", "The rolling-ball surfaces of the last recompute", None),
+    ("App::PropertyLink", "Surfaces", "Part feature showing the rolling-ball surfaces", None),
     ("App::PropertyMap", "Statistics", "Report of the last recompute", None),
 ]
-# Outputs: written by execute() without touching the feature again; hidden or read-only for the user.
-OUTPUT_STATUS = {"SurfaceShape": ["Output", "Hidden"], "Statistics": ["Output", "ReadOnly"]}
+# Set by the feature itself, shown read-only; Statistics is an output (writing it does not touch).
+PROPERTY_STATUS = {"Surfaces": ["ReadOnly"], "Statistics": ["Output", "ReadOnly"]}
 
 
 class Rounding:
@@ -64,8 +63,8 @@ class Rounding:
             obj.addProperty(type_name, name, GROUP, tooltip)
             if default is not None:
                 setattr(obj, name, default)
-            if name in OUTPUT_STATUS:
-                obj.setPropertyStatus(name, OUTPUT_STATUS[name])
+            if name in PROPERTY_STATUS:
+                obj.setPropertyStatus(name, PROPERTY_STATUS[name])
 
     def onDocumentRestored(self, obj):
         self.ensure_properties(obj)
@@ -78,7 +77,7 @@ class Rounding:
                                      tolerance=obj.Tolerance.Value or None,
                                      feature_angle=obj.FeatureAngle.Value, reach=obj.Reach)
         obj.Mesh = result.mesh
-        obj.SurfaceShape = shapes.compound(result.surfaces)
+        surfaces_feature.update_surfaces(obj, result.surfaces)
         obj.Statistics = {key: str(value) for key, value in result.report.items()
                           if not isinstance(value, (dict, list))}  # the scalars; details stay in the API
 
@@ -128,6 +127,9 @@ def make_rounding(base, seeds, radius, tolerance=0, feature_angle=30, reach=3, n
     reach = inputs.reach_value(reach)
 
     doc = doc or base.Document
+    if doc.Name != base.Document.Name:  # App::PropertyLink cannot point into another document
+        raise RoundingError(f"Base '{base.Label}' is in document '{base.Document.Name}', "
+                            f"not in '{doc.Name}'")
     obj = doc.addObject(TYPE, name)
     Rounding(obj)
     obj.Base = base

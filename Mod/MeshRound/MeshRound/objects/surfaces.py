@@ -1,61 +1,34 @@
-"""The "RoundingSurfaces" child: a Part feature showing a Rounding's rolling-ball faces as a shape.
+"""The "RoundingSurfaces" child of a Rounding: a plain Part::Feature holding the rolling-ball faces.
 
-A Mesh feature cannot carry a Part shape in a way the tree, STEP export or Part tools see, so every
-Rounding gets this companion.  It *pulls* the faces from its Rounding's hidden SurfaceShape output in its
-own execute(): it depends on the Rounding (Source link), so a recompute runs Rounding first, then this,
-and neither touches the other -- no recompute loop.  The Rounding's view provider claims it as a child.
-The class path MeshRound.objects.surfaces.RoundingSurfaces is stored in .FCStd files: keep it stable.
+A Mesh feature cannot carry a Part shape that the tree, STEP export or Part tools see, so each Rounding
+owns one of these, linked from its `Surfaces` property and claimed as a child by its view provider.
+The Rounding links the child (not the other way round), so deleting a Rounding warns about nothing, and
+its view provider deletes the child with it.  The Rounding's execute() writes the child's Shape and then
+clears the child's touched flag: the child has nothing to compute itself, so this ends the recompute.
 """
 import FreeCAD
 
-TYPE = "Part::FeaturePython"
+from .. import shapes
 
-
-class RoundingSurfaces:
-    """Proxy of the RoundingSurfaces feature."""
-
-    def __init__(self, obj):
-        obj.Proxy = self
-        self.ensure_properties(obj)
-
-    @staticmethod
-    def ensure_properties(obj):
-        if "Source" not in obj.PropertiesList:
-            obj.addProperty("App::PropertyLink", "Source", "Rounding",
-                            "The Rounding whose surfaces this shows")
-            obj.setPropertyStatus("Source", ["ReadOnly"])
-
-    def onDocumentRestored(self, obj):
-        self.ensure_properties(obj)
-
-    def execute(self, obj):
-        source = obj.Source
-        if source is not None and "SurfaceShape" in source.PropertiesList:
-            obj.Shape = source.SurfaceShape.copy()
-
-    def __getstate__(self):
-        return None
-
-    def __setstate__(self, state):
-        return None
-
-    dumps, loads = __getstate__, __setstate__
+TYPE = "Part::Feature"
+SURFACE_COLOR = (0.95, 0.55, 0.15)  # orange, like the chain highlight of the task panel
 
 
 def make_surfaces(rounding):
-    """Add the RoundingSurfaces child of `rounding` to its document."""
-    doc = rounding.Document
-    obj = doc.addObject(TYPE, rounding.Name + "Surfaces")
-    RoundingSurfaces(obj)
-    obj.Source = rounding
+    """Add the RoundingSurfaces child of `rounding` and link it from rounding.Surfaces."""
+    obj = rounding.Document.addObject(TYPE, rounding.Name + "Surfaces")
     obj.Label = rounding.Label + "Surfaces"
+    rounding.Surfaces = obj
     if FreeCAD.GuiUp:
-        from ..viewproviders.rounding import ViewProviderRoundingSurfaces
-        ViewProviderRoundingSurfaces(obj.ViewObject)
+        obj.ViewObject.ShapeColor = SURFACE_COLOR
+        obj.ViewObject.Visibility = False  # it lies on the rounded mesh; shown on demand (Space)
     return obj
 
 
-def surfaces_of(rounding):
-    """The RoundingSurfaces features that show `rounding` (normally one)."""
-    return [o for o in rounding.InList
-            if isinstance(getattr(o, "Proxy", None), RoundingSurfaces) and o.Source == rounding]
+def update_surfaces(rounding, faces):
+    """Show `faces` in the rounding's child, if it has one (it may have been deleted by the user)."""
+    child = rounding.Surfaces
+    if child is None:
+        return
+    child.Shape = shapes.compound(faces)
+    child.purgeTouched()  # nothing to recompute in the child: don't leave it marked

@@ -38,9 +38,12 @@ class Overlay:
     def clear(self):
         self._content.removeAllChildren()
 
+    def in_scene(self):
+        return self._graph.findChild(self._root) >= 0
+
     def remove(self):
         self.clear()
-        if self._graph.findChild(self._root) >= 0:
+        if self.in_scene():
             self._graph.removeChild(self._root)
 
 

@@ -47,9 +47,6 @@ class RoundEdgesPanel:
         self.form = RoundEdgesForm(values["radius"], values["tolerance"], values["feature_angle"],
                                    values["reach"])
         self._radius_expression = _expression_of(feature, "Radius")
-        if self._radius_expression:  # the expression wins at every recompute: do not pretend otherwise
-            self.form.radius.setEnabled(False)
-            self.form.radius.setToolTip(f"Radius is set by the expression {self._radius_expression}")
         self._timer = QtCore.QTimer()
         self._timer.setSingleShot(True)
         self._timer.setInterval(PREVIEW_DELAY_MS)
@@ -62,7 +59,6 @@ class RoundEdgesPanel:
         self._saved_view_state = []
         self._enter_view_state()
         self._picker = _PickObserver(self)
-        FreeCADGui.Selection.addObserver(self._picker)
         global _active
         _active = weakref.ref(self)
 
@@ -108,6 +104,10 @@ class RoundEdgesPanel:
     def set_radius(self, radius):
         self.form.radius.setProperty("rawValue", float(radius))  # fires valueChanged -> preview
 
+    def overlays(self):
+        """The temporary drawing layers (chain marks, preview) this panel put into the 3D view."""
+        return self._marks, self._preview
+
     def feature_angle(self):
         return quantity_value(self.form.feature_angle)
 
@@ -143,9 +143,8 @@ class RoundEdgesPanel:
         except (RoundingError, ValueError) as exc:
             self._show_error(str(exc))
             return
-        vertices, triangles = meshconv.mesh_to_arrays(self.result.mesh)
         contacts = [shapes.wire_points(w) for w in self.result.contacts]
-        self._preview.show(overlays.mesh_node(vertices, triangles),
+        self._preview.show(overlays.mesh_node(self.result.vertices, self.result.triangles),
                            overlays.polylines_node(contacts, overlays.CONTACT_COLOR, width=2.0))
         self.error = None
         self.form.show_status(_summary(self.result.report))
@@ -209,7 +208,7 @@ class RoundEdgesPanel:
         global _active
         _active = None
         self._timer.stop()
-        FreeCADGui.Selection.removeObserver(self._picker)
+        self._picker.remove()
         self._marks.remove()
         self._preview.remove()
         if self.feature:
@@ -262,10 +261,22 @@ class RoundEdgesPanel:
         self.schedule_preview()
 
     def _refresh_marks(self):
+        self._update_radius_field()
         chains = [shapes.wire_points(w) for w in self.chain_wires]
         self._marks.show(overlays.polylines_node(chains, overlays.CHAIN_COLOR, width=5.0),
                          overlays.markers_node([tuple(s) for s in self.seeds], overlays.SEED_COLOR),
                          overlays.markers_node([row[:3] for row in self.law], overlays.LAW_COLOR))
+
+    def _update_radius_field(self):
+        """The constant radius is unused with a radius law, and fixed by an expression if it has one."""
+        if self._radius_expression:
+            reason = f"Radius is set by the expression {self._radius_expression}"
+        elif self.law:
+            reason = "The variable radius table is used; empty it to use a constant radius"
+        else:
+            reason = None
+        self.form.radius.setEnabled(reason is None)
+        self.form.radius.setToolTip(reason or "Rolling ball radius")
 
     def _show_error(self, message):
         self.error = message
@@ -288,17 +299,26 @@ class RoundEdgesPanel:
 
 
 class _PickObserver:
-    """FreeCAD selection observer: a click on the base mesh (with a picked point) becomes a pick."""
+    """Selection observer: a click on the base mesh in the 3D view becomes a pick at the clicked point.
+
+    FreeCAD's navigation style decides what a click is (a drag that rotates the view selects nothing).
+    A mesh selection has no sub-element, so a 3D click is told from a tree click by its point: the tree
+    (and Selection.addSelection without coordinates) report exactly (0, 0, 0).
+    """
 
     def __init__(self, panel):
         self.panel = panel
+        FreeCADGui.Selection.addObserver(self)
+
+    def remove(self):
+        FreeCADGui.Selection.removeObserver(self)
 
     def addSelection(self, doc_name, obj_name, sub, point):
         panel = self.panel
-        if doc_name != panel.doc.Name or obj_name != panel.base.Name or not sub:
-            return  # tree clicks carry no point (no sub-element); other objects are not ours
+        if doc_name != panel.doc.Name or obj_name != panel.base.Name or tuple(point) == (0.0, 0.0, 0.0):
+            return
         panel.handle_pick(FreeCAD.Vector(*point))
-        # keep the base unselected so the next click on it is a new selection event again
+        # keep the base unselected: the view stays readable and the next click is a new selection
         QtCore.QTimer.singleShot(0, FreeCADGui.Selection.clearSelection)
 
 

@@ -1,9 +1,10 @@
-"""View provider proxies of the Rounding feature and its RoundingSurfaces child (GUI only).
+"""View provider proxy of the Rounding feature (GUI only).
 
-The C++ view providers come from the object types: Mesh::FeaturePython gets MeshGui::ViewProviderPython
-(a mesh face-set view) and Part::FeaturePython gets PartGui::ViewProviderPython; these proxies only add
-the icon, the tree children and editing.  Class paths are stored in .FCStd files: keep them stable.
+Mesh::FeaturePython gets its C++ view provider from its type (MeshGui::ViewProviderPython, a shaded mesh);
+this proxy adds the icon, the tree children (Base, which make_rounding hides, and the RoundingSurfaces
+Part feature) and editing in the task panel.  The class path is stored in .FCStd files: keep it stable.
 """
+import FreeCAD
 import FreeCADGui
 
 from ..resources import icon_path
@@ -11,10 +12,7 @@ from ..resources import icon_path
 EDIT_MODE_DEFAULT = 0  # FreeCAD's "default" edit mode: our task panel (1 = transform, etc. stay FreeCAD's)
 
 
-class _StatelessViewProvider:
-    """Common base: attach the proxy, keep no state in the file, show an icon."""
-    icon_name = ""
-
+class ViewProviderRounding:
     def __init__(self, vobj):
         vobj.Proxy = self
 
@@ -23,25 +21,11 @@ class _StatelessViewProvider:
         self.Object = vobj.Object
 
     def getIcon(self):
-        return icon_path(self.icon_name)
-
-    def __getstate__(self):
-        return None
-
-    def __setstate__(self, state):
-        return None
-
-    dumps, loads = __getstate__, __setstate__  # the names FreeCAD >= 0.21 looks for
-
-
-class ViewProviderRounding(_StatelessViewProvider):
-    """Claims Base (hidden while the Rounding exists) and the surfaces child; edits in the task panel."""
-    icon_name = "MeshRound_RoundEdges.svg"
+        return icon_path("MeshRound_RoundEdges.svg")
 
     def claimChildren(self):
-        from ..objects.surfaces import surfaces_of
-        base = self.Object.Base
-        return ([base] if base else []) + surfaces_of(self.Object)
+        obj = self.Object
+        return [child for child in (obj.Base, getattr(obj, "Surfaces", None)) if child]
 
     def doubleClicked(self, vobj):
         FreeCADGui.ActiveDocument.setEdit(vobj.Object.Name, EDIT_MODE_DEFAULT)
@@ -50,8 +34,13 @@ class ViewProviderRounding(_StatelessViewProvider):
     def setEdit(self, vobj, mode=EDIT_MODE_DEFAULT):
         if mode != EDIT_MODE_DEFAULT:
             return None  # let FreeCAD handle its other modes (e.g. transform)
+        base = vobj.Object.Base
+        if base is None or not base.isDerivedFrom("Mesh::Feature"):
+            FreeCAD.Console.PrintError(f"MeshRound: {vobj.Object.Label} has no mesh Base to edit against; "
+                                       "set its Base property first.\n")
+            return False
         from ..taskpanels.round_edges import RoundEdgesPanel
-        FreeCADGui.Control.showDialog(RoundEdgesPanel(vobj.Object.Base, feature=vobj.Object))
+        FreeCADGui.Control.showDialog(RoundEdgesPanel(base, feature=vobj.Object))
         return True
 
     def unsetEdit(self, vobj, mode=EDIT_MODE_DEFAULT):
@@ -61,16 +50,21 @@ class ViewProviderRounding(_StatelessViewProvider):
         return True
 
     def onDelete(self, vobj, subelements):
-        """Deleting a Rounding shows its Base again and deletes its surfaces child."""
-        from ..objects.surfaces import surfaces_of
+        """Deleting a Rounding deletes its surfaces child too and shows its Base again."""
         obj = vobj.Object
-        for child in surfaces_of(obj):
+        child = getattr(obj, "Surfaces", None)
+        if child:
+            obj.Surfaces = None
             obj.Document.removeObject(child.Name)
         if obj.Base and obj.Base.ViewObject:
             obj.Base.ViewObject.Visibility = True
         return True
 
+    # No state of its own (the icon path is computed): nothing to store in the file.
+    def __getstate__(self):
+        return None
 
-class ViewProviderRoundingSurfaces(_StatelessViewProvider):
-    icon_name = "MeshRound_Surfaces.svg"
+    def __setstate__(self, state):
+        return None
 
+    dumps, loads = __getstate__, __setstate__  # the names FreeCAD >= 0.21 looks for
