@@ -24,6 +24,7 @@ for _p in ("/usr/lib/freecad-python3/lib", "/usr/lib/freecad/lib"):
         sys.path.append(_p)
 
 import FreeCAD  # noqa: E402
+import Mesh  # noqa: E402,F401  (for the tests)
 import MeshPart  # noqa: E402
 import Part  # noqa: E402
 import numpy as np  # noqa: E402

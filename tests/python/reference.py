@@ -10,7 +10,7 @@ from scipy.spatial import cKDTree
 
 import cases
 
-CHUNK = 200_000  # point/triangle pairs evaluated at once
+CHUNK = 20_000  # points queried at once (each has a handful of candidate triangles)
 SHARP_DEG = 20.0  # an edge of an exact solid is "its own sharp edge" when its faces turn by more
 
 
@@ -23,9 +23,10 @@ def mesh_arrays(mesh):
 
 
 def shape_arrays(shape, deflection):
-    """(V, F) of a Part shape (or face) tessellated with the given chordal deflection."""
-    pts, tris = shape.tessellate(deflection)
-    return np.array([tuple(p) for p in pts], dtype=float).reshape(-1, 3), np.array(tris, dtype=np.int64).reshape(-1, 3)
+    """(V, F) of a Part shape tessellated with the given chordal deflection (MeshPart: Part's own
+    Shape.tessellate takes minutes on a face with a hole at this deflection)."""
+    return mesh_arrays(cases.MeshPart.meshFromShape(Shape=shape, LinearDeflection=deflection,
+                                                    AngularDeflection=0.1, Relative=False))
 
 
 def dot(a, b):
@@ -56,24 +57,6 @@ def point_triangle_distance(P, A, B, C):
     return np.where(inside, plane, out)
 
 
-def refine(V, F, max_edge):
-    """Triangle soup (V, F) of the same surface, split at longest-edge midpoints until no edge exceeds
-    max_edge: the splits are exact, they only keep triangles small for the tree queries below."""
-    T, done = V[F], []
-    while len(T):
-        L = np.stack([norm(T[:, (i + 1) % 3] - T[:, (i + 2) % 3]) for i in range(3)], axis=1)
-        small = L.max(axis=1) <= max_edge
-        done.append(T[small])
-        T, L = T[~small], L[~small]
-        k = L.argmax(axis=1)  # the vertex opposite the longest edge
-        rows = np.arange(len(T))
-        apex, p, q = T[rows, k], T[rows, (k + 1) % 3], T[rows, (k + 2) % 3]
-        m = 0.5 * (p + q)
-        T = np.concatenate([np.stack((apex, p, m), 1), np.stack((apex, m, q), 1)])
-    T = np.concatenate(done) if done else np.zeros((0, 3, 3))
-    return T.reshape(-1, 3), np.arange(3 * len(T)).reshape(-1, 3)
-
-
 def pairs_within(tree, P, radius):
     """(point index, tree index) for every tree point within radius[i] of P[i] (flattened ball queries)."""
     lists = tree.query_ball_point(P, radius)
@@ -83,28 +66,61 @@ def pairs_within(tree, P, radius):
     return rows, cols
 
 
+def ladder_split(T, h):
+    """Triangles T (m, 3, 3) cut into strips across their two longer edges, the strips no wider than h:
+    a sliver of length L becomes ~2L/h pieces (not (L/h)^2 as with uniform refinement)."""
+    L = np.stack([norm(T[:, (i + 1) % 3] - T[:, (i + 2) % 3]) for i in range(3)], axis=1)
+    k = L.argmin(axis=1)  # apex: opposite the shortest edge
+    rows = np.arange(len(T))
+    A, B, C = T[rows, k], T[rows, (k + 1) % 3], T[rows, (k + 2) % 3]  # cyclic order kept
+    n = np.maximum(1, np.ceil(L.max(axis=1) / h)).astype(int)
+    out = [T[n == 1]]
+    for m in np.unique(n[n > 1]):
+        a, b, c = A[n == m], B[n == m], C[n == m]
+        f = np.arange(m + 1)[None, :, None] / m
+        P, Q = a[:, None] + (b - a)[:, None] * f, a[:, None] + (c - a)[:, None] * f  # rungs P_i Q_i
+        tips = np.stack([a, P[:, 1], Q[:, 1]], 1)[:, None]
+        lower = np.stack([P[:, 1:-1], P[:, 2:], Q[:, 1:-1]], 2)
+        upper = np.stack([Q[:, 1:-1], P[:, 2:], Q[:, 2:]], 2)
+        out.append(np.concatenate([tips, lower, upper], 1).reshape(-1, 3, 3))
+    return np.concatenate(out)
+
+
+def small_triangles(V, F, h):
+    """The triangles of (V, F) as a soup of pieces no longer than ~h (two ladder passes: the first
+    cuts along the long edges, the second across the rungs it made)."""
+    return ladder_split(ladder_split(V[F], h), h)
+
+
 class TriangleSet:
-    """Exact distance queries to a triangle set: for a point at distance d0 from the nearest vertex, the
-    nearest triangle has its centroid within d0 + (largest centroid-to-corner radius)."""
+    """Exact distance queries to a triangle set, cut into pieces no longer than h so that a sphere around
+    each piece's centroid is tight: for a point, the upper bound U from the piece of the nearest centroid,
+    then every piece whose centroid lies within U + (largest piece radius) is measured."""
 
-    def __init__(self, V, F, max_edge):
-        V, F = refine(V, F, max_edge)
-        self.A, self.B, self.C = V[F[:, 0]], V[F[:, 1]], V[F[:, 2]]
-        cen = (self.A + self.B + self.C) / 3
-        self.rad = max(norm(X - cen).max() for X in (self.A, self.B, self.C)) if len(F) else 0.0
-        self.centroids = cKDTree(cen)
-        self.vertices = cKDTree(V)
+    def __init__(self, V, F, h):
+        T = small_triangles(V, F, h) if len(F) else np.zeros((0, 3, 3))
+        self.A, self.B, self.C = T[:, 0], T[:, 1], T[:, 2]
+        self.centroids = cen = T.mean(axis=1)
+        self.radii = np.max([norm(X - cen) for X in (self.A, self.B, self.C)], axis=0) if len(T) else np.zeros(0)
+        self.rad = self.radii.max(initial=0.0)
+        self.tree = cKDTree(cen) if len(T) else None
 
-    def distance(self, P):
+    def _measure(self, P, rows, tri):
+        return point_triangle_distance(P[rows], self.A[tri], self.B[tri], self.C[tri])
+
+    def distance(self, P, cap=np.inf):
+        """Exact distances; where one exceeds `cap` it is only known to exceed it (the search stops
+        there, so a wildly wrong mesh cannot make the measurement slow)."""
         out = np.full(len(P), np.inf)
-        if len(P) == 0 or self.centroids.n == 0:
+        if len(P) == 0 or self.tree is None:
             return out
-        d0, _ = self.vertices.query(P)
-        step = max(1, CHUNK // 64)
-        for s in range(0, len(P), step):
-            rows, cols = pairs_within(self.centroids, P[s:s + step], d0[s:s + step] + self.rad + 1e-9)
-            d = point_triangle_distance(P[s + rows], self.A[cols], self.B[cols], self.C[cols])
-            np.minimum.at(out, s + rows, d)
+        out = self._measure(P, np.arange(len(P)), self.tree.query(P)[1])
+        for s in range(0, len(P), CHUNK):
+            reach = np.minimum(out[s:s + CHUNK], cap) + self.rad + 1e-9
+            rows, cols = pairs_within(self.tree, P[s:s + CHUNK], reach)
+            near = norm(P[s + rows] - self.centroids[cols]) <= reach[rows] - self.rad + self.radii[cols]
+            rows, cols = rows[near], cols[near]  # each piece's own sphere, not the largest one
+            np.minimum.at(out, s + rows, self._measure(P, s + rows, cols))
         return out
 
 
@@ -147,25 +163,31 @@ def near_triangles(V, F, chain, within):
 
 def exact_skin(shape, case, chain, within):
     """TriangleSet of an exact solid's skin near the chain."""
-    r = case.r_max
-    V, F = shape_arrays(shape, 5e-4 * r)
-    return TriangleSet(V, near_triangles(V, F, chain, within), 0.2 * r)
+    V, F = shape_arrays(shape, 5e-4 * case.r_max)
+    return TriangleSet(V, near_triangles(V, F, chain, within), 0.1 * case.r_max)  # small: fans of slivers
+
+
+def face_samples(face, step):
+    """Points on a CAD face on a (u, v) grid about `step` apart, inside its trimmed domain."""
+    u0, u1, v0, v1 = face.ParameterRange
+    length = lambda pts: sum((p - q).Length for p, q in zip(pts, pts[1:]))  # noqa: E731
+    um, vm = 0.5 * (u0 + u1), 0.5 * (v0 + v1)
+    lu = length([face.valueAt(u, vm) for u in np.linspace(u0, u1, 33)])
+    lv = length([face.valueAt(um, v) for v in np.linspace(v0, v1, 33)])
+    us = np.linspace(u0, u1, int(np.ceil(lu / step)) + 1)
+    vs = np.linspace(v0, v1, int(np.ceil(lv / step)) + 1)
+    return np.array([tuple(face.valueAt(u, v)) for u in us for v in vs if face.isPartOfDomain(u, v)]).reshape(-1, 3)
 
 
 def round_samples(case):
     """Points on the exact rounds (OCCT's fillet faces), about r/20 apart."""
-    pts = []
-    for f in case.rounds:
-        V, F = refine(*shape_arrays(f, 5e-4 * case.r_max), 0.05 * case.r_max)
-        pts.append(V)
-    return np.unique(np.concatenate(pts), axis=0)
+    return np.concatenate([face_samples(f, 0.05 * case.r_max) for f in case.rounds])
 
 
 def surface_samples(V, F):
-    """Vertices, edge midpoints and centroids of a triangle mesh: where a chordal error shows."""
-    T = V[F]
-    mids = [(T[:, i] + T[:, (i + 1) % 3]) / 2 for i in range(3)]
-    return np.concatenate([V, T.mean(axis=1)] + mids)
+    """Vertices, edge midpoints and centroids of a triangle mesh (each once): where a chordal error shows."""
+    E = np.unique(np.sort(np.concatenate([F[:, [0, 1]], F[:, [1, 2]], F[:, [2, 0]]]), axis=1), axis=0)
+    return np.concatenate([V[np.unique(F)], V[E].mean(axis=1), V[F].mean(axis=1)])
 
 
 def sharp_edge_points(shape, step):
@@ -225,19 +247,21 @@ def dihedrals_deg(V, F, table, edges):
     return np.degrees(np.arccos(np.clip(c, -1, 1)))
 
 
-def max_dihedral_near(V, F, table, chain, reach, own_sharp, r, only=None):
-    """Largest turn across manifold edges near the chain (midpoint within reach), except along the exact
-    solid's own sharp edges; `only`: a facet mask, edges must touch one of those facets."""
+def max_dihedral_near(V, F, table, chain, reach, own_sharp, r, only=None, below=180.0):
+    """Largest turn under `below` across manifold edges near the chain (midpoint within reach), except
+    edges along the exact solid's own sharp edges (both ends within r/20 of one); `only`: a facet mask,
+    edges must touch one of those facets."""
     E = table["edges"]
     ok = table["count"] == 2
     if only is not None:
         ok &= only[table["first"]] | only[np.maximum(table["second"], 0)]
-    mid = V[E].mean(axis=1)
-    ok &= chain.distance(mid) <= reach
+    ok &= chain.distance(V[E].mean(axis=1)) <= reach
     if len(own_sharp):
-        ok &= cKDTree(own_sharp).query(mid)[0] > 0.05 * r
-    idx = np.where(ok)[0]
-    return float(dihedrals_deg(V, F, table, idx).max()) if len(idx) else 0.0
+        on = cKDTree(own_sharp).query(V)[0] <= 0.05 * r
+        ok &= ~(on[E[:, 0]] & on[E[:, 1]])
+    turn = dihedrals_deg(V, F, table, np.where(ok)[0])
+    turn = turn[turn < below]
+    return float(turn.max()) if len(turn) else 0.0
 
 
 # -------------------------------------------------------------------------------------------- identity
@@ -265,19 +289,26 @@ _CACHE = {}
 
 
 def exact_geometry(case, reach):
-    """Per case (cached): the chain, the exact filleted and sharp skins near it, samples on the rounds,
-    and the filleted / sharp solids' own sharp edges."""
+    """Per case (cached): the chain, the exact filleted and sharp skins near it, samples on the rounds
+    and on the sharp faces at the chain, and the filleted solid's own sharp edges."""
     key = (case.name, reach)
     if key not in _CACHE:
         chain, r = Chain(case), case.r_max
         _CACHE[key] = dict(
             chain=chain,
-            filleted=exact_skin(case.reference, case, chain, (reach + 3) * r),
+            filleted=exact_skin(case.reference, case, chain, (reach + 1.5) * r),
             sharp=exact_skin(case.solid, case, chain, 4 * r),
+            sharp_samples=sharp_samples_near(case, chain, 2 * r),
             rounds=round_samples(case),
-            own_sharp_filleted=sharp_edge_points(case.reference, 0.01 * r),
-            own_sharp_input=sharp_edge_points(case.solid, 0.01 * r))
+            own_sharp_filleted=sharp_edge_points(case.reference, 0.01 * r))
     return _CACHE[key]
+
+
+def sharp_samples_near(case, chain, within):
+    """Points on the sharp solid's faces that touch the chain, within `within` of it, about r/10 apart."""
+    faces = [f for f in case.solid.Faces if any(e.isSame(c) for e in f.Edges for c in case.chain)]
+    S = np.concatenate([face_samples(f, 0.1 * case.r_max) for f in faces])
+    return S[chain.distance(S) <= within]
 
 
 def input_tessellation_error(case, V0, F0, geo):
@@ -287,68 +318,85 @@ def input_tessellation_error(case, V0, F0, geo):
     near = near_triangles(V0, F0, chain, 2 * r)
     P = surface_samples(V0, near)
     there = geo["sharp"].distance(P[chain.distance(P) <= 2 * r]).max(initial=0)
-    Vs, Fs = shape_arrays(case.solid, 5e-4 * r)
-    S = refine(Vs, near_triangles(Vs, Fs, chain, 2 * r), 0.1 * r)[0]
-    S = S[chain.distance(S) <= 2 * r]
+    S = geo["sharp_samples"]
     back = TriangleSet(V0, near, 0.2 * r).distance(S).max(initial=0)
     return float(max(there, back))
 
 
-def score(case, inp, out, report=None, reach=3.0):
-    """Every figure of one rounding of `case`: inp, out are Mesh.Mesh; report the engine's report dict."""
-    r = case.r_max
-    geo = exact_geometry(case, reach)
-    chain = geo["chain"]
-    V0, F0 = mesh_arrays(inp)
-    V1, F1 = mesh_arrays(out)
-    res = dict(case=case.name, r=r, tolerance=case.tolerance, facets_in=len(F0), facets_out=len(F1))
-
-    # accuracy, both ways, relative to r
-    P = surface_samples(V1, near_triangles(V1, F1, chain, (reach + 1) * r))
-    P = P[chain.distance(P) <= (reach + 1) * r]
-    res["dev_out_to_ref"] = float(geo["filleted"].distance(P).max(initial=0) / r)
+def accuracy(case, geo, V0, F0, V1, F1, made, reach):
+    """Deviations relative to r: made facets -> exact filleted solid (kept facets are the input's own, see
+    input_error), points on the exact rounds -> the result near the chain, and the input's own error.
+    A deviation over 0.1 (ten tolerances) is only bounded: it lies between 0.1 and the figure given."""
+    r, chain = case.r_max, geo["chain"]
+    P = surface_samples(V1, F1[made])
+    P = P[chain.distance(P) <= (reach + 1) * r]  # made facets beyond: see far_facets_added
     band = F1[chain.facet_distance(V1, F1, (reach + 1) * r) <= (reach + 1) * r]
-    res["dev_ref_to_out"] = float(TriangleSet(V1, band, 0.2 * r).distance(geo["rounds"]).max() / r)
-    res["input_error"] = input_tessellation_error(case, V0, F0, geo) / r
+    return dict(dev_out_to_ref=float(geo["filleted"].distance(P, cap=0.1 * r).max(initial=0) / r),
+                dev_ref_to_out=float(TriangleSet(V1, band, 0.2 * r).distance(geo["rounds"], cap=0.1 * r).max() / r),
+                input_error=input_tessellation_error(case, V0, F0, geo) / r)
 
-    # topology
-    t0, t1 = edge_table(F0), edge_table(F1)
-    res["boundary_edges_in"] = int((t0["count"] == 1).sum())
-    res["boundary_edges_out"] = int((t1["count"] == 1).sum())
-    res["nonmanifold_edges"] = int((t1["count"] > 2).sum())
-    res["misoriented_edges"] = t1["misoriented"]
-    angles1 = min_angles_deg(V1, F1)
-    res["degenerate_facets"] = int((angles1 < 0.01).sum())
-    res["orientation_kept"] = bool(np.sign(signed_volume(V0, F0)) == np.sign(signed_volume(V1, F1)))
-    res["self_intersections"] = bool(out.hasSelfIntersections())
-    exact_change = case.reference.Volume - case.solid.Volume
+
+def topology(case, out, V0, F0, V1, F1, t0, t1):
     change = abs(signed_volume(V1, F1)) - abs(signed_volume(V0, F0))
-    res["volume_change_error"] = float(abs(change - exact_change) / abs(exact_change))
+    exact_change = case.reference.Volume - case.solid.Volume
+    return dict(
+        boundary_edges_in=int((t0["count"] == 1).sum()),
+        boundary_edges_out=int((t1["count"] == 1).sum()),
+        nonmanifold_edges=int((t1["count"] > 2).sum()),
+        misoriented_edges=t1["misoriented"],
+        degenerate_facets=int((min_angles_deg(V1, F1) < 0.01).sum()),
+        orientation_kept=bool(np.sign(signed_volume(V0, F0)) == np.sign(signed_volume(V1, F1))),
+        self_intersections=bool(out.hasSelfIntersections()),
+        volume_change_error=float(abs(change - exact_change) / abs(exact_change)))
 
-    # locality: far input vertices and facets are in the result, bit for bit
-    id0, id1 = common_vertex_ids(V0, V1)
+
+def locality(case, chain, V0, F0, V1, F1, made, ids, keys, reach):
+    """Input vertices beyond reach * r + their longest edge, and input facets entirely beyond reach * r,
+    must be in the result bit for bit (facets with their orientation); no facet is made beyond
+    (reach + 1) r."""
+    (id0, id1), (keys0, keys1) = ids, keys
+    r = case.r_max
     longest = np.zeros(len(V0))
     for i in range(3):
         np.maximum.at(longest, F0[:, i], np.max([norm(V0[F0[:, i]] - V0[F0[:, j]]) for j in range(3)], axis=0))
     far_v = chain.distance(V0) > reach * r + longest
-    res["far_vertices"] = int(far_v.sum())
-    res["far_vertices_lost"] = int((~np.isin(id0[far_v], id1)).sum())
     far_f = chain.facet_distance(V0, F0, reach * r) > reach * r
-    keys0, keys1 = as_rows(cyclic_keys(id0[F0])), as_rows(cyclic_keys(id1[F1]))
-    res["far_facets"] = int(far_f.sum())
-    res["far_facets_lost"] = int((~np.isin(keys0[far_f], keys1)).sum())
+    far_made = chain.facet_distance(V1, F1[made], (reach + 1) * r) > (reach + 1) * r
+    return dict(far_vertices=int(far_v.sum()), far_vertices_lost=int((~np.isin(id0[far_v], id1)).sum()),
+                far_facets=int(far_f.sum()), far_facets_lost=int((~np.isin(keys0[far_f], keys1)).sum()),
+                far_facets_added=int(far_made.sum()))
 
-    # smoothness: turns across edges of made facets near the chain, vs the input's own near it
-    made = ~np.isin(keys1, keys0)
-    res["new_facets"] = int(made.sum())
-    res["max_dihedral_new_deg"] = max_dihedral_near(V1, F1, t1, chain, reach * r, geo["own_sharp_filleted"], r, made)
-    res["max_dihedral_input_deg"] = max_dihedral_near(V0, F0, t0, chain, reach * r, geo["own_sharp_input"], r)
 
-    # element quality: made facets vs the input's own near the chain
+def smoothness_and_quality(case, geo, V0, F0, V1, F1, t0, t1, made, reach, feature_angle):
+    """Turns across edges of made facets near the chain vs the input's own there; smallest angles of the
+    made facets vs the input's own within 1.5 r."""
+    r, chain = case.r_max, geo["chain"]
+    angles = min_angles_deg(V1, F1[made])
     near0 = chain.facet_distance(V0, F0, 1.5 * r) <= 1.5 * r
-    res["min_angle_new_deg"] = float(angles1[made].min()) if made.any() else float("nan")
-    res["slivers_new"] = int((angles1[made] < 10.0).sum())
-    res["min_angle_input_near_deg"] = float(min_angles_deg(V0, F0[near0]).min())
+    return dict(
+        new_facets=int(made.sum()),
+        max_dihedral_new_deg=max_dihedral_near(V1, F1, t1, chain, reach * r, geo["own_sharp_filleted"], r, made),
+        # the input's own faceting of its curved faces: turns below the feature angle (sharper ones are creases)
+        max_dihedral_input_deg=max_dihedral_near(V0, F0, t0, chain, reach * r, [], r, below=feature_angle),
+        min_angle_new_deg=float(angles.min()) if len(angles) else float("nan"),
+        slivers_new=int((angles < 10.0).sum()),
+        min_angle_input_near_deg=float(min_angles_deg(V0, F0[near0]).min()))
+
+
+def score(case, inp, out, report=None, reach=3.0, feature_angle=30.0):
+    """Every figure of one rounding of `case`: inp, out are Mesh.Mesh; report the engine's report dict."""
+    geo = exact_geometry(case, reach)
+    V0, F0 = mesh_arrays(inp)
+    V1, F1 = mesh_arrays(out)
+    id0, id1 = common_vertex_ids(V0, V1)
+    keys0, keys1 = as_rows(cyclic_keys(id0[F0])), as_rows(cyclic_keys(id1[F1]))
+    made = ~np.isin(keys1, keys0)  # facets that are not input facets
+    t0, t1 = edge_table(F0), edge_table(F1)
+    res = dict(case=case.name, r=case.r_max, tolerance=case.tolerance, facets_in=len(F0), facets_out=len(F1))
+    res.update(accuracy(case, geo, V0, F0, V1, F1, made, reach))
+    res.update(topology(case, out, V0, F0, V1, F1, t0, t1))
+    res.update(locality(case, geo["chain"], V0, F0, V1, F1, made, (id0, id1), (keys0, keys1), reach))
+    res.update(smoothness_and_quality(case, geo, V0, F0, V1, F1, t0, t1, made, reach, feature_angle))
     if report is not None:
         res["input_forces_small_angles"] = bool(report.get("input_forces_small_angles", False))
         res["engine_max_deviation"] = report.get("max_deviation")

@@ -1,0 +1,142 @@
+"""Demo: round both die shoulders of the S-rail die mesh, once with a constant and once with a variable radius.
+
+    /usr/bin/python3 resources/srail_demo.py [out_dir]        (default: out)
+
+Writes under out_dir:
+  srail_die.stl                         the sharp die mesh (the input, a CAE tool mesh)
+  srail_rounded_constant.{stl,obj}      both shoulders rounded, r = CONSTANT_RADIUS
+  srail_rounded_variable.{stl,obj}      both shoulders rounded, r varying along each shoulder (LAW)
+  srail_rounding.FCStd                  the die mesh with the two parametric Rounding features
+  srail_report.json                     the engine's report per rounding (one entry per chain inside)
+  srail_before_after.png                rendered by FreeCAD's GUI (resources/srail_render.py, under xvfb)
+"""
+import json
+import os
+import subprocess
+import sys
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+for _p in ("/usr/lib/freecad-python3/lib", os.path.join(HERE, "srail")):
+    if _p not in sys.path:
+        sys.path.append(_p)
+import FreeCAD  # noqa: E402  (it puts the user's Mod folders first on sys.path ...)
+import numpy as np  # noqa: E402
+
+sys.path.insert(0, os.path.join(HERE, "..", "Mod", "MeshRound"))  # ... so this tree's MeshRound goes before
+
+import MeshRound  # noqa: E402
+import srail_die  # noqa: E402
+
+ELEMENT_SIZE = 5.0      # mm: the tool mesh's element size
+CONSTANT_RADIUS = 5.0   # mm: the benchmark's die radius
+LAW = [(0.0, 3.0), (0.5, 8.0), (1.0, 3.0)]  # (fraction along each shoulder, radius mm): widest in the S
+RENDER_SCRIPT = os.path.join(HERE, "srail_render.py")
+
+
+def shoulder_polylines(step=0.5):
+    """Each die shoulder as an ordered (n, 3) polyline, from the CAD model (x increasing)."""
+    solid = srail_die.die_solid()
+    edges = srail_die.shoulder_edges(solid)
+    out = []
+    for seed in srail_die.shoulder_seeds():
+        wire = _chain_through(edges, seed)
+        pts = np.array([tuple(p) for p in wire.discretize(Distance=step)])
+        out.append(pts if pts[0, 0] < pts[-1, 0] else pts[::-1])
+    return out
+
+
+def _chain_through(edges, seed):
+    """The tangent chain of `edges` that passes through `seed` (edges sharing vertices with it)."""
+    import Part
+    chains = [Part.Wire(c) for c in Part.sortEdges(edges)]
+    return min(chains, key=lambda w: w.distToShape(Part.Vertex(seed))[0])
+
+
+def radius_laws(law=LAW, inset=1.0):
+    """Per shoulder, [(FreeCAD.Vector, r)]: the law's control points placed along it by arc length.
+    (The engine wants every control point of a call near every chain it rounds: one law per shoulder.)"""
+    laws = []
+    for line in shoulder_polylines():
+        s = np.concatenate([[0.0], np.cumsum(np.linalg.norm(np.diff(line, axis=0), axis=1))])
+        at = [np.clip(fraction * s[-1], inset, s[-1] - inset) for fraction, _ in law]
+        laws.append([(FreeCAD.Vector(*(np.interp(a, s, line[:, k]) for k in range(3))), r)
+                     for a, (_, r) in zip(at, law)])
+    return laws
+
+
+def round_variable(mesh, seeds, laws):
+    """Each shoulder with its own law, one after the other; the reports of both."""
+    reports = []
+    for seed, law in zip(seeds, laws):
+        res = MeshRound.round_edges(mesh, [seed], law)
+        mesh = res.mesh
+        reports.append(res.report)
+    return mesh, reports
+
+
+def write_meshes(out_dir, name, mesh):
+    for ext in ("stl", "obj"):
+        mesh.write(os.path.join(out_dir, f"{name}.{ext}"))
+
+
+def write_document(out_dir, mesh, seeds, laws):
+    """An FCStd with the die mesh and the parametric Rounding features (recomputed): RoundingConstant
+    (both shoulders), and RoundingVariable on top of RoundingVariableFirst (one shoulder each)."""
+    path = os.path.join(out_dir, "srail_rounding.FCStd")
+    doc = FreeCAD.newDocument("SRailDie")
+    try:
+        base = doc.addObject("Mesh::Feature", "DieMesh")
+        base.Mesh = mesh
+        MeshRound.make_rounding(base, seeds, CONSTANT_RADIUS, name="RoundingConstant", doc=doc)
+        first = MeshRound.make_rounding(base, seeds[:1], laws[0], name="RoundingVariableFirst", doc=doc)
+        doc.recompute()  # a Rounding's base must have its mesh before it can be rounded again
+        MeshRound.make_rounding(first, seeds[1:], laws[1], name="RoundingVariable", doc=doc)
+        doc.recompute()
+        broken = [o.Name for o in doc.Objects if "Invalid" in o.State or "Error" in o.State]
+        if broken:
+            raise RuntimeError(f"recompute failed for {broken}")
+        doc.saveAs(path)
+    finally:
+        FreeCAD.closeDocument(doc.Name)
+    return path
+
+
+def render(out_dir):
+    """The before/after PNG, drawn by FreeCAD's GUI under a virtual X server."""
+    env = dict(os.environ, SRAIL_OUT=os.path.abspath(out_dir), QTWEBENGINE_CHROMIUM_FLAGS="--no-sandbox")
+    cmd = ["xvfb-run", "-a", "-s", "-screen 0 1600x1200x24", "freecad", RENDER_SCRIPT]
+    subprocess.run(cmd, env=env, timeout=300, check=False, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    png = os.path.join(out_dir, "srail_before_after.png")
+    if not os.path.exists(png):
+        raise RuntimeError("the render macro wrote no PNG (is xvfb-run installed?)")
+    return png
+
+
+def main(out_dir="out"):
+    os.makedirs(out_dir, exist_ok=True)
+    mesh = srail_die.die_mesh(ELEMENT_SIZE)
+    mesh.write(os.path.join(out_dir, "srail_die.stl"))
+    seeds = srail_die.shoulder_seeds()
+    laws = radius_laws()
+    constant = MeshRound.round_edges(mesh, seeds, CONSTANT_RADIUS)
+    variable, variable_reports = round_variable(mesh, seeds, laws)
+    write_meshes(out_dir, "srail_rounded_constant", constant.mesh)
+    write_meshes(out_dir, "srail_rounded_variable", variable)
+    report = dict(element_size=ELEMENT_SIZE, facets_in=mesh.CountFacets,
+                  constant=dict(radius=CONSTANT_RADIUS, report=constant.report),
+                  variable=[dict(law=[dict(point=list(p), radius=r) for p, r in law], report=rep)
+                            for law, rep in zip(laws, variable_reports)])
+    with open(os.path.join(out_dir, "srail_report.json"), "w") as f:
+        json.dump(report, f, indent=1)
+    write_document(out_dir, mesh, seeds, laws)
+    png = render(out_dir)
+    for name, r in [("constant", constant.report)] + [(f"variable, shoulder {i + 1}", r)
+                                                       for i, r in enumerate(variable_reports)]:
+        print(f"{name}: {r.get('chains')} chain(s), {r.get('facets_in')} -> {r.get('facets_out')} facets, "
+              f"max deviation {r.get('max_deviation'):.4f} mm, {r.get('seconds', 0):.2f} s")
+    print("wrote", os.path.abspath(out_dir), "(", os.path.basename(png), ")")
+    return report
+
+
+if __name__ == "__main__":
+    main(sys.argv[1] if len(sys.argv) > 1 else "out")

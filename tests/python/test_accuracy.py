@@ -1,0 +1,190 @@
+"""Accuracy of MeshRound.round_edges against OCCT's exact fillet of the CAD solid that was meshed.
+
+Every case of cases.py x every mesh variant (fine, coarse, cad) is rounded once with tolerance r/100; the
+figures (reference.score) are printed (pytest -s) and written to tests/artifacts/accuracy.json.
+Bounds, all relative to the exact answer, none hard-coded per case:
+  * deviation both ways <= tolerance + the input's own tessellation error near the chain (+ the
+    yardstick's own precision, MEASURE);
+  * topology as the input's: boundary edges, no non-manifold / mis-oriented / degenerate facets, no
+    self-intersection, orientation kept;
+  * locality: input vertices and facets beyond reach * r are in the result bit for bit;
+  * smoothness: made facets turn by at most max(20 deg, the input's own faceting near the chain + 1 deg);
+  * quality: no made facet under 10 deg unless the input has such facets near the chain and the report
+    says so (input_forces_small_angles).
+"""
+import json
+import os
+import sys
+import time
+
+import numpy as np
+import pytest
+
+import cases
+import reference
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+sys.path.append(os.path.join(HERE, "..", "..", "Mod", "MeshRound"))
+ARTIFACT = os.path.join(HERE, "..", "artifacts", "accuracy.json")
+
+MEASURE = 0.002      # / r: the yardstick's own precision (exact solids tessellated to 5e-4 r, samples)
+MAX_TURN_DEG = 20.0  # a round at t = r/100 turns ~16 deg between facets
+MIN_ANGLE_DEG = 10.0
+RUNS = [(c, v) for c in cases.CONSTANT + cases.VARIABLE for v in cases.MESH_VARIANTS]
+ROWS = {}
+
+# Known engine faults, one line per (property, case, mesh): expected to fail, and strict, so that a fix
+# turns the line into a failure until it is struck from this list.
+KNOWN_FAULTS = {
+    "deviation": {("pocket_rim", "coarse"), ("s_chain", "fine"), ("s_chain", "coarse"),
+                  ("s_chain_var3", "coarse")},
+    "topology": {("draft_shoulder", "coarse"), ("pocket_rim", "fine"), ("pocket_rim", "coarse"),
+                 ("pocket_rim", "cad"), ("s_chain", "fine"), ("s_chain", "coarse"), ("s_chain", "cad"),
+                 ("lchannel_var", "cad"), ("s_chain_var3", "coarse"), ("s_chain_var3", "cad")},
+    "locality": {("pocket_rim", "coarse"), ("s_chain", "coarse"), ("s_chain_var3", "coarse")},
+    "smoothness": {("draft_shoulder", "coarse"), ("pocket_rim", "fine"), ("pocket_rim", "coarse"),
+                   ("pocket_rim", "cad"), ("s_chain", "fine"), ("s_chain", "coarse"), ("s_chain", "cad"),
+                   ("s_chain_var3", "fine"), ("s_chain_var3", "coarse")},
+    "quality": {("box", "coarse"), ("box", "cad"), ("lchannel", "cad"), ("draft_shoulder", "cad"),
+                ("pocket_rim", "coarse"), ("s_chain", "coarse"), ("box_var", "coarse"), ("box_var", "cad"),
+                ("lchannel_var", "cad"), ("s_chain_var3", "coarse")},
+}
+
+
+def runs(prop):
+    """RUNS for one property, the known faults marked as strict expected failures."""
+    faults = KNOWN_FAULTS[prop]
+    return [pytest.param(c, v, marks=pytest.mark.xfail(strict=True, reason="known engine fault"))
+            if (c, v) in faults else (c, v) for c, v in RUNS]
+
+
+def round_case(name, variant):
+    """Round one case (once per session) and score it against the exact fillet."""
+    if (name, variant) not in ROWS:
+        if not _engine_built():
+            pytest.skip("the engine (_meshround_core) is not built")
+        import MeshRound
+        case = cases.case(name)
+        mesh = case.mesh(variant)
+        started = time.perf_counter()
+        try:
+            res = MeshRound.round_edges(mesh, [case.seed], case.radius, tolerance=case.tolerance)
+        except MeshRound.RoundingError as exc:
+            ROWS[name, variant] = dict(case=name, mesh=variant, error=str(exc))
+        else:
+            row = dict(case=name, mesh=variant, seconds=time.perf_counter() - started)
+            row.update(reference.score(case, mesh, res.mesh, res.report))
+            ROWS[name, variant] = row
+        figures = {k: round(v, 4) if isinstance(v, float) else v for k, v in ROWS[name, variant].items()}
+        print("\n" + json.dumps(figures))
+    row = ROWS[name, variant]
+    if "error" in row:
+        pytest.fail(f"round_edges refused {name}/{variant}: {row['error']}")
+    return row
+
+
+def _engine_built():
+    folder = os.path.join(HERE, "..", "..", "Mod", "MeshRound", "MeshRound")
+    return any(f.startswith("_meshround_core") for f in os.listdir(folder)) if os.path.isdir(folder) else False
+
+
+@pytest.fixture(scope="module", autouse=True)
+def write_artifact():
+    """Rows of this run replace the same (case, mesh) rows of the file: a -k run keeps the others."""
+    yield
+    if not ROWS:
+        return
+    try:
+        with open(ARTIFACT) as f:
+            rows = {(r["case"], r["mesh"]): r for r in json.load(f)}
+    except (OSError, ValueError, KeyError, TypeError):
+        rows = {}
+    rows.update(ROWS)
+    os.makedirs(os.path.dirname(ARTIFACT), exist_ok=True)
+    with open(ARTIFACT, "w") as f:
+        json.dump(list(rows.values()), f, indent=1)
+
+
+def allowed_deviation(row):
+    return row["tolerance"] / row["r"] + row["input_error"] + MEASURE
+
+
+# ----------------------------------------------------------------------------------- the yardstick itself
+def test_meshes_are_float32_already():
+    """Mesh.Mesh holds float32 points: no STL round trip is needed to give MeshRound what a file would."""
+    V, _ = reference.mesh_arrays(cases.case("pocket_rim").mesh("coarse"))
+    assert np.array_equal(V.astype(np.float32).astype(float), V)
+
+
+@pytest.mark.parametrize("name", ["box", "pocket_rim"])
+def test_yardstick_scores_the_cad_route_near_zero(name):
+    """OCCT's fillet re-meshed finely is within the yardstick's precision of itself."""
+    case = cases.case(name)
+    out = cases.MeshPart.meshFromShape(Shape=case.reference, LinearDeflection=case.r_max / 1000,
+                                       AngularDeflection=0.1, Relative=False)
+    row = reference.score(case, case.mesh("cad"), out)
+    assert row["dev_out_to_ref"] < MEASURE and row["dev_ref_to_out"] < MEASURE
+
+
+def test_yardstick_sees_a_dent():
+    """A vertex of the exact round pushed r/20 into the solid shows as a deviation of about r/20.  (This
+    tessellation has round vertices only on the end faces: the push is inward from both.)"""
+    case = cases.case("box")
+    V, F = reference.mesh_arrays(cases.MeshPart.meshFromShape(
+        Shape=case.reference, LinearDeflection=case.r_max / 1000, AngularDeflection=0.1, Relative=False))
+    axis = np.array([35.0, 25.0])  # the round's axis in (y, z); x runs along the edge, end faces x = 0, 60
+    on_round = np.where(np.abs(np.linalg.norm(V[:, 1:] - axis, axis=1) - 5) < 1e-3)[0]
+    i = on_round[np.argmax(np.minimum(V[on_round, 1] - 35, V[on_round, 2] - 25) - V[on_round, 0])]
+    push = 0.05 * case.r_max
+    V[i, 1:] -= push * (V[i, 1:] - axis) / 5
+    V[i, 0] += push
+    row = reference.score(case, case.mesh("cad"), cases.Mesh.Mesh([list(map(tuple, V[f])) for f in F]))
+    assert 0.9 * push / case.r_max < row["dev_out_to_ref"] < 1.1 * push / case.r_max
+
+
+@pytest.mark.parametrize("name", cases.VARIABLE)
+def test_reference_law_ends_as_specified(name):
+    """The variable references (per-edge Part::Fillet stations) start and end at the radii asked for."""
+    case = cases.case(name)
+    (_, r_first), (_, r_last) = case.radius[0], case.radius[-1]
+    assert r_first == pytest.approx(case.law[0][1], rel=0.02)
+    assert r_last == pytest.approx(case.law[-1][1], rel=0.02)
+
+
+# ---------------------------------------------------------------------------------------- the rounding
+@pytest.mark.parametrize("name,variant", runs("deviation"))
+def test_deviation_both_ways(name, variant):
+    row = round_case(name, variant)
+    assert row["dev_out_to_ref"] <= allowed_deviation(row)
+    assert row["dev_ref_to_out"] <= allowed_deviation(row)
+
+
+@pytest.mark.parametrize("name,variant", runs("topology"))
+def test_topology_is_kept(name, variant):
+    row = round_case(name, variant)
+    assert row["boundary_edges_out"] == row["boundary_edges_in"]
+    assert (row["nonmanifold_edges"], row["misoriented_edges"], row["degenerate_facets"]) == (0, 0, 0)
+    assert row["orientation_kept"] and not row["self_intersections"]
+
+
+@pytest.mark.parametrize("name,variant", runs("locality"))
+def test_far_mesh_is_untouched(name, variant):
+    row = round_case(name, variant)
+    assert row["far_vertices_lost"] == 0
+    assert row["far_facets_lost"] == 0
+    assert row["far_facets_added"] == 0
+
+
+@pytest.mark.parametrize("name,variant", runs("smoothness"))
+def test_round_is_smooth(name, variant):
+    row = round_case(name, variant)
+    assert row["max_dihedral_new_deg"] <= max(MAX_TURN_DEG, row["max_dihedral_input_deg"] + 1.0)
+
+
+@pytest.mark.parametrize("name,variant", runs("quality"))
+def test_no_slivers_made(name, variant):
+    row = round_case(name, variant)
+    if row["min_angle_new_deg"] >= MIN_ANGLE_DEG:
+        return
+    assert row["min_angle_input_near_deg"] < MIN_ANGLE_DEG, "slivers made where the input has none"
+    assert row["input_forces_small_angles"], "the report does not say the input forced small angles"
