@@ -5,6 +5,8 @@
 #include <cstdio>
 #include <cstdlib>
 
+#include <Eigen/Dense>
+
 namespace meshround {
 namespace {
 
@@ -25,6 +27,21 @@ double v_at_angle_fraction(const RoundingSurface& s, const ProfileStation& st, d
     (std::acos(std::clamp(a.dot(p), -1.0, 1.0)) < target ? lo : hi) = mid;
   }
   return 0.5 * (lo + hi);
+}
+
+// Distance from p to the surface, by Gauss-Newton from the parameters (u, v) that p was made from: the
+// surface's parametrisation need not be uniform, so S(u, v) itself may lie beside p along the surface.
+double distance_to_surface(const RoundingSurface& s, const Vec3& p, double u, double v) {
+  Vec3 q, su, sv;
+  for (int it = 0; it < 4; ++it) {
+    s.d1(u, v, q, su, sv);
+    Eigen::Matrix2d JtJ;
+    JtJ << su.dot(su), su.dot(sv), su.dot(sv), sv.dot(sv);
+    const Eigen::Vector2d step = JtJ.ldlt().solve(Eigen::Vector2d(su.dot(p - q), sv.dot(p - q)));
+    if (!step.allFinite()) break;
+    u += step(0), v = std::clamp(v + step(1), 0.0, 1.0);
+  }
+  return (s.value(u, v) - p).norm();
 }
 
 }  // namespace
@@ -73,12 +90,11 @@ RoundMeshStats mesh_rounding_surface(const RoundingSurface& surface, const std::
   std::vector<double> us;
   for (const auto* row : {&first_row, &last_row})
     for (const RowPoint& p : *row) us.push_back(p.u);
-  if (surface.closed) {
-    us.push_back(std::min(first_row.front().u, last_row.front().u));
-    us.push_back(us.back() + period);
-  }
   std::sort(us.begin(), us.end());
-  const double u_lo = us.front(), u_hi = us.back();
+  // A loop's inner rows span exactly one period from the first sample (their last point is their first).
+  const double u_lo = us.front(), u_hi = surface.closed ? u_lo + period : us.back();
+  us.erase(std::remove_if(us.begin(), us.end(), [&](double u) { return u > u_hi; }), us.end());
+  us.push_back(u_hi);
   std::vector<double> U{u_lo};
   for (double u : us)
     if (u - U.back() >= h_min && u_hi - u >= h_min) U.push_back(u);
@@ -144,7 +160,7 @@ RoundMeshStats mesh_rounding_surface(const RoundingSurface& surface, const std::
           p = 0.5 * (position(*a) + position(*b2));
           u = 0.5 * (a->u + b2->u), v = 0.5 * (a->v + b2->v);
         }
-        worst = std::max(worst, (surface.value(u, v) - p).norm());
+        worst = std::max(worst, distance_to_surface(surface, p, u, v));
       }
       stats.max_deviation = std::max(stats.max_deviation, worst);
       if (worst > 0.9 * tolerance)
