@@ -1,5 +1,7 @@
 #include "meshround/sew.h"
 
+#include <cstdio>
+#include <cstdlib>
 #include <map>
 
 namespace meshround {
@@ -89,6 +91,11 @@ SewStats sew_round(MeshEdit& edit, size_t round_begin, size_t round_end) {
     }
     Vec3 normal = Vec3::Zero();  // Newell's normal of the loop
     for (size_t i = 0; i < loop.size(); ++i) normal += edit.point(loop[i]).cross(edit.point(loop[(i + 1) % loop.size()]));
+    if (getenv("MESHROUND_DEBUG")) {
+      fprintf(stderr, "gap loop of %zu:", loop.size());
+      for (int v : loop) fprintf(stderr, " %d(%.3f %.3f %.3f)", v, edit.point(v).x(), edit.point(v).y(), edit.point(v).z());
+      fprintf(stderr, "\n");
+    }
     const size_t before = edit.added.size();
     triangulate_polygon(edit, loop, normal, edit.added);
     stats.gap_facets += int(edit.added.size() - before);

@@ -2,6 +2,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <unordered_map>
 
 #include "meshround/mesh_edit.h"
 
@@ -17,15 +18,41 @@ double min_angle(const Vec3& a, const Vec3& b, const Vec3& c) {
   return std::min({ang(a, b, c), ang(b, c, a), ang(c, a, b)});
 }
 
-bool inside_triangle_2d(const Eigen::Vector2d& p, const Eigen::Vector2d& a, const Eigen::Vector2d& b,
-                        const Eigen::Vector2d& c) {
-  auto cross = [](const Eigen::Vector2d& o, const Eigen::Vector2d& x, const Eigen::Vector2d& y) {
-    return (x - o).x() * (y - o).y() - (x - o).y() * (y - o).x();
-  };
-  // Points on the ear's sides count as inside: a vertex on the diagonal c-a would be cut off.
-  const double eps = -1e-12 * ((b - a).squaredNorm() + (c - b).squaredNorm() + (a - c).squaredNorm());
-  const double d1 = cross(a, b, p), d2 = cross(b, c, p), d3 = cross(c, a, p);
-  return d1 >= eps && d2 >= eps && d3 >= eps;
+double cross2(const Eigen::Vector2d& o, const Eigen::Vector2d& x, const Eigen::Vector2d& y) {
+  return (x - o).x() * (y - o).y() - (x - o).y() * (y - o).x();
+}
+
+// p inside the ear (a, b, c) or within a hair of it: a vertex (nearly) on the diagonal c-a would be cut off
+// or leave a zero-area triangle behind.
+bool blocks_ear(const Eigen::Vector2d& p, const Eigen::Vector2d& a, const Eigen::Vector2d& b, const Eigen::Vector2d& c) {
+  const double hair = 1e-7 * std::max({(b - a).norm(), (c - b).norm(), (a - c).norm()});
+  return cross2(a, b, p) >= -hair * (b - a).norm() && cross2(b, c, p) >= -hair * (c - b).norm() &&
+         cross2(c, a, p) >= -hair * (a - c).norm();
+}
+
+// Lawson flips inside the polygon: an inner diagonal is flipped when the other diagonal of its (convex)
+// quadrilateral gives a larger smallest angle. Boundary edges never move.
+void improve_by_flips(const std::vector<Vec3>& P, const std::vector<Eigen::Vector2d>& Q, std::vector<std::array<int, 3>>& tris) {
+  auto key = [](int a, int b) { return std::uint64_t(std::min(a, b)) << 32 | std::uint32_t(std::max(a, b)); };
+  for (size_t guard = 0; guard < 4 * tris.size() + 8; ++guard) {  // one flip per sweep, while flips help
+    std::unordered_map<std::uint64_t, std::pair<int, int>> owner;  // edge -> (triangle, its corner opposite)
+    bool flipped = false;
+    for (int t = 0; t < int(tris.size()) && !flipped; ++t)
+      for (int k = 0; k < 3 && !flipped; ++k) {
+        const int a = tris[t][k], b = tris[t][(k + 1) % 3], c = tris[t][(k + 2) % 3];
+        auto [it, fresh] = owner.try_emplace(key(a, b), t, c);
+        if (fresh) continue;
+        const int u = it->second.first, d = it->second.second;  // triangle u = (b, a, d)
+        // Both new triangles must keep a positive area, or the flip would leave the polygon.
+        if (cross2(Q[c], Q[a], Q[d]) <= 0 || cross2(Q[d], Q[b], Q[c]) <= 0) continue;
+        const double now = std::min(min_angle(P[a], P[b], P[c]), min_angle(P[b], P[a], P[d]));
+        const double then = std::min(min_angle(P[c], P[a], P[d]), min_angle(P[d], P[b], P[c]));
+        if (then <= now + 1e-9) continue;
+        tris[t] = {c, a, d}, tris[u] = {d, b, c};
+        flipped = true;
+      }
+    if (!flipped) return;
+  }
 }
 
 }  // namespace
@@ -55,10 +82,7 @@ void triangulate_polygon(const MeshEdit& edit, const std::vector<int>& polygon, 
   std::vector<int> idx(ring.size());
   for (size_t i = 0; i < idx.size(); ++i) idx[i] = int(i);
   if (flipped) std::reverse(idx.begin(), idx.end());
-  auto emit = [&](int a, int b, int c) {
-    if (flipped) out.push_back({ring[c], ring[b], ring[a]});
-    else out.push_back({ring[a], ring[b], ring[c]});
-  };
+  std::vector<std::array<int, 3>> tris;  // indices into ring, counter-clockwise in (e1, e2)
   while (idx.size() > 3) {
     int best = -1;
     double best_q = -1;
@@ -66,13 +90,12 @@ void triangulate_polygon(const MeshEdit& edit, const std::vector<int>& polygon, 
     for (int i = 0; i < m; ++i) {
       const int a = idx[(i + m - 1) % m], b = idx[i], c = idx[(i + 1) % m];
       const auto &qa = Q[a], &qb = Q[b], &qc = Q[c];
-      const double turn = (qb - qa).x() * (qc - qb).y() - (qb - qa).y() * (qc - qb).x();
-      if (turn <= 1e-9 * (qb - qa).norm() * (qc - qb).norm()) continue;  // reflex or flat corner: not an ear
+      if (cross2(qa, qb, qc) <= 1e-9 * (qb - qa).norm() * (qc - qb).norm()) continue;  // reflex or flat: no ear
       bool empty = true;
       for (int j = 0; j < m && empty; ++j) {
         const int w = idx[j];
         if (w == a || w == b || w == c) continue;
-        empty = !inside_triangle_2d(Q[w], qa, qb, qc);
+        empty = !blocks_ear(Q[w], qa, qb, qc);
       }
       if (!empty) continue;
       const double q = min_angle(P[a], P[b], P[c]);
@@ -86,10 +109,15 @@ void triangulate_polygon(const MeshEdit& edit, const std::vector<int>& polygon, 
       }
       best = 0;
     }
-    emit(idx[(best + m - 1) % m], idx[best], idx[(best + 1) % m]);
+    tris.push_back({idx[(best + m - 1) % m], idx[best], idx[(best + 1) % m]});
     idx.erase(idx.begin() + best);
   }
-  emit(idx[0], idx[1], idx[2]);
+  tris.push_back({idx[0], idx[1], idx[2]});
+  improve_by_flips(P, Q, tris);
+  for (const auto& t : tris) {
+    if (flipped) out.push_back({ring[t[2]], ring[t[1]], ring[t[0]]});
+    else out.push_back({ring[t[0]], ring[t[1]], ring[t[2]]});
+  }
 }
 
 }  // namespace meshround
