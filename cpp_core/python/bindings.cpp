@@ -114,6 +114,15 @@ py::dict round_edges_py(const py::array& vertices, const py::array& triangles, c
   return out;
 }
 
+const char* end_name(ChainEnd e) {
+  switch (e) {
+    case ChainEnd::Junction: return "junction";
+    case ChainEnd::Boundary: return "boundary";
+    case ChainEnd::Turn: return "turn";
+    default: return "fade";
+  }
+}
+
 py::list trace_chains_py(const py::array& vertices, const py::array& triangles, const py::array& seeds, double feature_angle,
                          double search_radius) {
   const Points V = to_points(vertices, "vertices");
@@ -124,6 +133,7 @@ py::list trace_chains_py(const py::array& vertices, const py::array& triangles, 
     py::dict d;
     d["points"] = polyline(c.points);
     d["closed"] = c.closed;
+    if (!c.closed) d["ends"] = py::make_tuple(end_name(c.start_end), end_name(c.end_end));
     out.append(d);
   }
   return out;

@@ -8,7 +8,7 @@ namespace meshround {
 namespace {
 
 bool is_sharp(const MeshTopology& mesh, int a, int b, double feature_angle_deg) {
-  return mesh.edge_facets(a, b).size() == 2 && mesh.dihedral_deg(a, b) >= feature_angle_deg;
+  return mesh.edge_facets(a, b).size() == 2 && mesh.is_feature_edge(a, b, feature_angle_deg);
 }
 
 // Distance from p to facet f.
@@ -53,22 +53,52 @@ std::pair<int, int> nearest_sharp_edge(const MeshTopology& mesh, const Vec3& see
   return edge;
 }
 
+// True when a facet (v, u, x) exists and is thin: its smallest height is under a quarter of its longest
+// edge and under `fold_width` (a coarse mesher's triangle along a sharp edge, holding part of the fold).
+bool thin_facet(const MeshTopology& mesh, int v, int u, int x, double fold_width) {
+  for (const int* f = mesh.facets_begin(v); f != mesh.facets_end(v); ++f) {
+    if (!mesh.facet_has_edge(*f, u, x)) continue;
+    const Vec3 a = mesh.point(v), b = mesh.point(u), c = mesh.point(x);
+    const double longest = std::max({(b - a).norm(), (c - b).norm(), (a - c).norm()});
+    const double height = (b - a).cross(c - a).norm() / std::max(longest, 1e-300);
+    return height < 0.25 * longest && height < fold_width;
+  }
+  return false;
+}
+
 // One step along the chain from `prev` -> `v`: the next vertex, or -1 with the reason it ends.
-int next_chain_vertex(const MeshTopology& mesh, int prev, int v, double feature_angle_deg, ChainEnd* end) {
-  std::vector<int> sharp;
+int next_chain_vertex(const MeshTopology& mesh, int prev, int v, double feature_angle_deg, double fold_width,
+                      ChainEnd* end) {
+  std::vector<int> ahead;
   for (int w : mesh.vertex_neighbours(v)) {
     const size_t nf = mesh.edge_facets(v, w).size();
     if (nf == 1) return *end = ChainEnd::Boundary, -1;
     if (nf > 2) return *end = ChainEnd::Junction, -1;
-    if (mesh.dihedral_deg(v, w) >= feature_angle_deg) sharp.push_back(w);
+    if (w != prev && mesh.is_feature_edge(v, w, feature_angle_deg)) ahead.push_back(w);
   }
-  if (sharp.size() >= 3) return *end = ChainEnd::Junction, -1;
-  if (sharp.size() < 2) return *end = ChainEnd::Fade, -1;
-  const int w = sharp[0] == prev ? sharp[1] : sharp[0];
-  const Vec3 d0 = (mesh.point(v) - mesh.point(prev)).normalized(), d1 = (mesh.point(w) - mesh.point(v)).normalized();
-  if (std::acos(std::clamp(d0.dot(d1), -1.0, 1.0)) * 180 / M_PI > feature_angle_deg)
-    return *end = ChainEnd::Turn, -1;
-  return w;
+  if (ahead.empty()) return *end = ChainEnd::Fade, -1;
+  const Vec3 d0 = (mesh.point(v) - mesh.point(prev)).normalized();
+  auto turn_deg = [&](int w) {
+    return std::acos(std::clamp(d0.dot((mesh.point(w) - mesh.point(v)).normalized()), -1.0, 1.0)) * 180 / M_PI;
+  };
+  // Other sharp edges make a junction, unless they only run across a thin facet on the chain (the fold
+  // is spread over that facet: no new edge starts there). Of the continuations that leave no
+  // such edge, the straightest.
+  // Across a thin facet (v, w, x) the chain takes its long side, not the apex.
+  int best = -1;
+  for (int w : ahead) {
+    const bool alone = std::all_of(ahead.begin(), ahead.end(), [&](int x) {
+      return x == w || thin_facet(mesh, v, prev, x, fold_width) || thin_facet(mesh, v, w, x, fold_width);
+    });
+    const bool apex = std::any_of(ahead.begin(), ahead.end(), [&](int x) {
+      return x != w && thin_facet(mesh, v, w, x, fold_width) &&
+             (mesh.point(x) - mesh.point(v)).norm() > (mesh.point(w) - mesh.point(v)).norm();
+    });
+    if (alone && !apex && (best < 0 || turn_deg(w) < turn_deg(best))) best = w;
+  }
+  if (best < 0) return *end = ChainEnd::Junction, -1;
+  if (turn_deg(best) > feature_angle_deg) return *end = ChainEnd::Turn, -1;
+  return best;
 }
 
 // Walk the fan of v from facet f (entered across edge (v, came)) to the facet holding edge (v, target),
@@ -92,12 +122,13 @@ int same_side_facet(const MeshTopology& mesh, int f, int v, int came, int target
 
 SharpChain trace_chain(const MeshTopology& mesh, const Vec3& seed, double feature_angle_deg, double search_radius) {
   const auto [a, b] = nearest_sharp_edge(mesh, seed, feature_angle_deg, search_radius);
+  const double fold_width = search_radius / 6;  // half the radius at the default reach factor of 3
   SharpChain chain;
   std::vector<int> forward{a, b};
   ChainEnd end_fwd = ChainEnd::Fade, end_bwd = ChainEnd::Fade;
   const size_t limit = size_t(mesh.num_vertices()) + 2;
   while (forward.size() < limit) {
-    const int w = next_chain_vertex(mesh, forward[forward.size() - 2], forward.back(), feature_angle_deg, &end_fwd);
+    const int w = next_chain_vertex(mesh, forward[forward.size() - 2], forward.back(), feature_angle_deg, fold_width, &end_fwd);
     if (w < 0) break;
     if (w == forward.front()) {
       chain.closed = true;
@@ -109,7 +140,7 @@ SharpChain trace_chain(const MeshTopology& mesh, const Vec3& seed, double featur
   if (!chain.closed) {
     int prev = b, v = a;
     while (backward.size() < limit) {
-      const int w = next_chain_vertex(mesh, prev, v, feature_angle_deg, &end_bwd);
+      const int w = next_chain_vertex(mesh, prev, v, feature_angle_deg, fold_width, &end_bwd);
       if (w < 0) break;
       backward.push_back(w);
       prev = v, v = w;
@@ -121,6 +152,13 @@ SharpChain trace_chain(const MeshTopology& mesh, const Vec3& seed, double featur
   chain.end_end = end_fwd;
 
   // Sides: A is one facet of the first edge, then carried around each chain vertex.
+  // A chain that entered the apex of a thin facet (from the seed) takes the facet's long side instead.
+  for (size_t i = 1; i + 1 < chain.vertices.size() && chain.vertices.size() > 2; ++i) {
+    const int v = chain.vertices[i - 1], x = chain.vertices[i], u = chain.vertices[i + 1];
+    if (thin_facet(mesh, v, x, u, fold_width) && mesh.is_feature_edge(v, u, feature_angle_deg) &&
+        mesh.edge_facets(v, u).size() == 2)
+      chain.vertices.erase(chain.vertices.begin() + long(i--));
+  }
   const int n = int(chain.vertices.size());
   const int edges = chain.closed ? n : n - 1;
   auto vtx = [&](int i) { return chain.vertices[(i + n) % n]; };
@@ -256,7 +294,7 @@ BaseMeshes collect_base_meshes(const MeshTopology& mesh, const SharpChain& chain
         const std::uint64_t key = edge_key(a, b);
         if (chain_edges.count(key)) continue;
         const int g = mesh.neighbour(f, a, b);
-        if (g < 0 || mesh.dihedral_deg(a, b) >= feature_angle_deg) {
+        if (g < 0 || mesh.is_feature_edge(a, b, feature_angle_deg)) {
           base.walls[side].insert(key);
           continue;
         }

@@ -85,6 +85,39 @@ Vec3 MeshTopology::facet_normal(int f) const {
   return l > 0 ? Vec3(n / l) : Vec3::Zero();
 }
 
+namespace {
+
+double smallest_angle(const Vec3& a, const Vec3& b, const Vec3& c) {
+  auto ang = [](const Vec3& u, const Vec3& v) {
+    const double d = u.norm() * v.norm();
+    return d > 0 ? std::acos(std::clamp(u.dot(v) / d, -1.0, 1.0)) : 0.0;
+  };
+  return std::min({ang(b - a, c - a), ang(c - b, a - b), ang(a - c, b - c)});
+}
+
+}  // namespace
+
+Vec3 MeshTopology::feature_normal(int f, int a, int b, double feature_angle_deg) const {
+  const Vec3 n = facet_normal(f);
+  constexpr double kSliver = 10.0 * M_PI / 180.0;
+  if (smallest_angle(corner(f, 0), corner(f, 1), corner(f, 2)) >= kSliver) return n;
+  // A sliver's plane tilts with the smallest offset of its vertices (a chord of a curved face a hair
+  // high tilts by tens of degrees): lean on its neighbours on the same face, area-weighted.
+  const double cos_limit = std::cos(feature_angle_deg * M_PI / 180.0);
+  Vec3 sum = (corner(f, 1) - corner(f, 0)).cross(corner(f, 2) - corner(f, 0));
+  for (int k = 0; k < 3; ++k) {
+    const int p = F(f, k), q = F(f, (k + 1) % 3);
+    if ((p == a && q == b) || (p == b && q == a)) continue;
+    const int g = neighbour(f, p, q);
+    if (g < 0) continue;
+    Vec3 area = (corner(g, 1) - corner(g, 0)).cross(corner(g, 2) - corner(g, 0));
+    if (edge_direction(g, p, q) == edge_direction(f, p, q)) area = -area;  // align orientation
+    if (area.normalized().dot(n) >= cos_limit) sum += area;
+  }
+  const double l = sum.norm();
+  return l > 0 ? Vec3(sum / l) : n;
+}
+
 double MeshTopology::dihedral_deg(int a, int b) const {
   const std::vector<int> fs = edge_facets(a, b);
   if (fs.size() != 2) return 180.0;
@@ -92,6 +125,15 @@ double MeshTopology::dihedral_deg(int a, int b) const {
   // Consistently oriented neighbours run the shared edge in opposite directions.
   if (edge_direction(fs[0], a, b) == edge_direction(fs[1], a, b)) n1 = -n1;
   return std::acos(std::clamp(n0.dot(n1), -1.0, 1.0)) * 180.0 / M_PI;
+}
+
+bool MeshTopology::is_feature_edge(int a, int b, double feature_angle_deg) const {
+  const std::vector<int> fs = edge_facets(a, b);
+  if (fs.size() != 2) return true;
+  if (dihedral_deg(a, b) < feature_angle_deg) return false;
+  Vec3 n0 = feature_normal(fs[0], a, b, feature_angle_deg), n1 = feature_normal(fs[1], a, b, feature_angle_deg);
+  if (edge_direction(fs[0], a, b) == edge_direction(fs[1], a, b)) n1 = -n1;
+  return std::acos(std::clamp(n0.dot(n1), -1.0, 1.0)) * 180.0 / M_PI >= feature_angle_deg;
 }
 
 Vec3 closest_point_on_segment(const Vec3& p, const Vec3& a, const Vec3& b, double* t) {

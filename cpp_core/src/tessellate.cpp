@@ -166,6 +166,7 @@ RoundMeshStats mesh_rounding_surface(const RoundingSurface& surface, const std::
       if (worst > 0.9 * tolerance)
         bad.push_back({std::min({tri[0].u, tri[1].u, tri[2].u}), std::max({tri[0].u, tri[1].u, tri[2].u})});
     }
+    if (getenv("MESHROUND_DEBUG")) fprintf(stderr, "refine round %d: %zu facets, %zu bad, U %zu, max dev %g\n", round, tris.size(), bad.size(), U.size(), stats.max_deviation);
     if (bad.empty()) break;
     std::vector<double> refined{U.front()};
     for (size_t i = 1; i < U.size(); ++i) {

@@ -36,18 +36,13 @@ ROWS = {}
 # Known engine faults, one line per (property, case, mesh): expected to fail, and strict, so that a fix
 # turns the line into a failure until it is struck from this list.
 KNOWN_FAULTS = {
-    "deviation": {("pocket_rim", "coarse"), ("s_chain", "fine"), ("s_chain", "coarse"),
-                  ("s_chain_var3", "coarse")},
-    "topology": {("draft_shoulder", "coarse"), ("pocket_rim", "fine"), ("pocket_rim", "coarse"),
-                 ("pocket_rim", "cad"), ("s_chain", "fine"), ("s_chain", "coarse"), ("s_chain", "cad"),
-                 ("lchannel_var", "cad"), ("s_chain_var3", "coarse"), ("s_chain_var3", "cad")},
-    "locality": {("pocket_rim", "coarse"), ("s_chain", "coarse"), ("s_chain_var3", "coarse")},
-    "smoothness": {("draft_shoulder", "coarse"), ("pocket_rim", "fine"), ("pocket_rim", "coarse"),
-                   ("pocket_rim", "cad"), ("s_chain", "fine"), ("s_chain", "coarse"), ("s_chain", "cad"),
-                   ("s_chain_var3", "fine"), ("s_chain_var3", "coarse")},
+    "deviation": {("pocket_rim", "coarse"), ("s_chain", "coarse")},
+    "topology": {("pocket_rim", "coarse"), ("s_chain", "coarse"), ("s_chain_var3", "coarse")},
+    "locality": {("pocket_rim", "coarse")},
+    "smoothness": {("pocket_rim", "coarse"), ("s_chain", "coarse"), ("s_chain_var3", "fine"),
+                   ("s_chain_var3", "coarse")},
     "quality": {("box", "coarse"), ("box", "cad"), ("lchannel", "cad"), ("draft_shoulder", "cad"),
-                ("pocket_rim", "coarse"), ("s_chain", "coarse"), ("box_var", "coarse"), ("box_var", "cad"),
-                ("lchannel_var", "cad"), ("s_chain_var3", "coarse")},
+                ("pocket_rim", "coarse"), ("box_var", "coarse"), ("box_var", "cad"), ("lchannel_var", "cad")},
 }
 
 

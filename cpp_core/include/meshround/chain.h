@@ -49,7 +49,8 @@ struct SharpChain {
 };
 
 // The sharp edge nearest to `seed` (within `search_radius`) and the whole chain through it.
-// Throws RoundingError when no sharp edge is near the seed.
+// Throws RoundingError when no sharp edge is near the seed. A thin facet on the chain (height under
+// search_radius / 6 and a quarter of its longest edge) holds part of the edge's fold: not a junction.
 SharpChain trace_chain(const MeshTopology& mesh, const Vec3& seed, double feature_angle_deg,
                        double search_radius);
 

@@ -47,6 +47,13 @@ class MeshTopology {
   // Angle (degrees) between the two facets of an edge, normals aligned across it; 0 = flat.
   // Returns 180 for a boundary or non-manifold edge (treated as a feature everywhere).
   double dihedral_deg(int a, int b) const;
+  // A sharp edge: dihedral >= the feature angle, also when a sliver facet's own normal (tilted by a tiny
+  // offset of its vertices) is replaced by its neighbours' on the same face. Boundary and non-manifold
+  // edges are features.
+  bool is_feature_edge(int a, int b, double feature_angle_deg) const;
+  // Normal of facet f for feature detection across its edge (a, b): its own, or for a sliver the
+  // area-weighted normal of it and its other neighbours within the feature angle.
+  Vec3 feature_normal(int f, int a, int b, double feature_angle_deg) const;
 
  private:
   std::vector<int> vf_start_, vf_;
