@@ -31,6 +31,9 @@ ELEMENT_SIZE = 5.0      # mm: the tool mesh's element size
 CONSTANT_RADIUS = 5.0   # mm: the benchmark's die radius
 LAW = [(0.0, 3.0), (0.5, 8.0), (1.0, 3.0)]  # (fraction along each shoulder, radius mm): widest in the S
 RENDER_SCRIPT = os.path.join(HERE, "srail_render.py")
+OUTPUTS = ("srail_die.stl", "srail_rounded_constant.stl", "srail_rounded_constant.obj",
+           "srail_rounded_variable.stl", "srail_rounded_variable.obj", "srail_rounding.FCStd",
+           "srail_report.json", "srail_before_after.png")
 
 
 def shoulder_polylines(step=0.5):
@@ -64,11 +67,42 @@ def radius_laws(law=LAW, inset=1.0):
     return laws
 
 
+class DemoError(RuntimeError):
+    """The engine refused a rounding of the demo; the message names the shoulder and the radius."""
+
+
+SHOULDERS = ("shoulder 1 (y = 95 side)", "shoulder 2 (y = 45 side)")
+
+
+def _describe(radius):
+    if isinstance(radius, (int, float)):
+        return f"constant r = {radius:g} mm"
+    return "variable r = " + " -> ".join(f"{r:g}" for _, r in radius) + " mm"
+
+
+def round_checked(mesh, seeds, radius, which):
+    """MeshRound.round_edges; a RoundingError becomes a DemoError naming the shoulder(s) and the radius
+    (when a call on both shoulders fails, each is tried alone to say which one the engine refuses)."""
+    try:
+        return MeshRound.round_edges(mesh, seeds, radius)
+    except MeshRound.RoundingError as exc:
+        failing = [(SHOULDERS[i], exc)] if len(which) == 1 else []
+        if len(which) > 1:
+            for i, seed in zip(which, seeds):
+                try:
+                    MeshRound.round_edges(mesh, [seed], radius)
+                except MeshRound.RoundingError as alone:
+                    failing.append((SHOULDERS[i], alone))
+        lines = [f"{name}, {_describe(radius)}: {err}" for name, err in failing] or \
+                [f"both shoulders together (each alone works), {_describe(radius)}: {exc}"]
+        raise DemoError("the engine refused the demo rounding:\n  " + "\n  ".join(lines)) from exc
+
+
 def round_variable(mesh, seeds, laws):
     """Each shoulder with its own law, one after the other; the reports of both."""
     reports = []
-    for seed, law in zip(seeds, laws):
-        res = MeshRound.round_edges(mesh, [seed], law)
+    for i, (seed, law) in enumerate(zip(seeds, laws)):
+        res = round_checked(mesh, [seed], law, [i])
         mesh = res.mesh
         reports.append(res.report)
     return mesh, reports
@@ -102,13 +136,21 @@ def write_document(out_dir, mesh, seeds, laws):
 
 
 def render(out_dir):
-    """The before/after PNG, drawn by FreeCAD's GUI under a virtual X server."""
+    """The before/after PNG, drawn by FreeCAD's GUI under a virtual X server.  With SRAIL_SMALL=path in
+    the environment the macro also writes a half-size copy there (resources/images/ holds one)."""
+    png = os.path.join(out_dir, "srail_before_after.png")
+    if os.path.exists(png):
+        os.remove(png)  # a PNG left from an earlier run must not pass for this one
     env = dict(os.environ, SRAIL_OUT=os.path.abspath(out_dir), QTWEBENGINE_CHROMIUM_FLAGS="--no-sandbox")
     cmd = ["xvfb-run", "-a", "-s", "-screen 0 1600x1200x24", "freecad", RENDER_SCRIPT]
-    subprocess.run(cmd, env=env, timeout=300, check=False, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
-    png = os.path.join(out_dir, "srail_before_after.png")
+    try:
+        run = subprocess.run(cmd, env=env, timeout=300, check=False, capture_output=True, text=True)
+        log = run.stdout + run.stderr
+    except (OSError, subprocess.TimeoutExpired) as exc:
+        log = str(exc)
     if not os.path.exists(png):
-        raise RuntimeError("the render macro wrote no PNG (is xvfb-run installed?)")
+        tail = "\n    ".join(log.strip().splitlines()[-8:])
+        raise DemoError(f"FreeCAD's render macro wrote no PNG (are freecad and xvfb-run installed?):\n    {tail}")
     return png
 
 
@@ -118,7 +160,7 @@ def main(out_dir="out"):
     mesh.write(os.path.join(out_dir, "srail_die.stl"))
     seeds = srail_die.shoulder_seeds()
     laws = radius_laws()
-    constant = MeshRound.round_edges(mesh, seeds, CONSTANT_RADIUS)
+    constant = round_checked(mesh, seeds, CONSTANT_RADIUS, [0, 1])
     variable, variable_reports = round_variable(mesh, seeds, laws)
     write_meshes(out_dir, "srail_rounded_constant", constant.mesh)
     write_meshes(out_dir, "srail_rounded_variable", variable)
@@ -134,9 +176,16 @@ def main(out_dir="out"):
                                                        for i, r in enumerate(variable_reports)]:
         print(f"{name}: {r.get('chains')} chain(s), {r.get('facets_in')} -> {r.get('facets_out')} facets, "
               f"max deviation {r.get('max_deviation'):.4f} mm, {r.get('seconds', 0):.2f} s")
-    print("wrote", os.path.abspath(out_dir), "(", os.path.basename(png), ")")
+    print(f"wrote {os.path.abspath(out_dir)}:")
+    for name in OUTPUTS:
+        path = os.path.join(out_dir, name)
+        print(f"  {name:34s} {os.path.getsize(path) / 1e6:6.2f} MB")
     return report
 
 
 if __name__ == "__main__":
-    main(sys.argv[1] if len(sys.argv) > 1 else "out")
+    try:
+        main(sys.argv[1] if len(sys.argv) > 1 else "out")
+    except DemoError as error:
+        print(f"srail_demo: error: {error}", file=sys.stderr)
+        sys.exit(1)

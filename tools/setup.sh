@@ -30,8 +30,13 @@ fi
 
 cmake -S "$ROOT" -B "$ROOT/build" -DCMAKE_BUILD_TYPE=Release > "$ROOT/build.log" 2>&1 || { cat "$ROOT/build.log"; exit 1; }
 cmake --build "$ROOT/build" -j"$(nproc)" >> "$ROOT/build.log" 2>&1 || { tail -50 "$ROOT/build.log"; exit 1; }
-cmake --install "$ROOT/build" >> "$ROOT/build.log" 2>&1
+cmake --install "$ROOT/build" >> "$ROOT/build.log" 2>&1 || { tail -20 "$ROOT/build.log"; exit 1; }
 MOD_DIR="$HOME/.local/share/FreeCAD/Mod/MeshRound"
+# The demo's files, so that the installed `meshround demo` runs without the source tree.
+rm -rf "$MOD_DIR/resources"
+mkdir -p "$MOD_DIR/resources/srail"
+cp "$ROOT/resources/srail_demo.py" "$ROOT/resources/srail_render.py" "$MOD_DIR/resources/"
+cp "$ROOT/resources/srail/srail_die.py" "$ROOT/resources/srail/README.md" "$MOD_DIR/resources/srail/"
 # The `meshround` command line.
 BIN_DIR="$HOME/.local/bin"
 [ "$(id -u)" -eq 0 ] && BIN_DIR="/usr/local/bin"
@@ -40,4 +45,5 @@ if [ -f "$MOD_DIR/meshround" ]; then
   chmod +x "$MOD_DIR/meshround"
   ln -sf "$MOD_DIR/meshround" "$BIN_DIR/meshround"
 fi
-echo "MeshRound built and installed into $MOD_DIR"
+echo "MeshRound built and installed into $MOD_DIR; the command line: $BIN_DIR/meshround"
+case ":$PATH:" in *":$BIN_DIR:"*) ;; *) echo "(add $BIN_DIR to PATH to type just 'meshround')" ;; esac

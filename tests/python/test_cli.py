@@ -8,6 +8,7 @@ import pytest
 import Mesh
 
 from conftest import MOD_DIR, box_mesh
+from MeshRound import cli
 
 WRAPPER = os.path.join(MOD_DIR, "meshround")
 SEED = "37,60,40"
@@ -27,6 +28,9 @@ def inputs(tmp_path_factory):
     for ext in ("stl", "obj", "ply"):
         mesh.write(str(folder / f"box.{ext}"))
     (folder / "garbage.stl").write_text("this is not a mesh\n")
+    (folder / "empty.stl").write_bytes(b"")
+    for name in ("box.3mf", "box"):  # a real mesh, under a name that says no readable format
+        (folder / name).write_bytes((folder / "box.stl").read_bytes())
     return folder
 
 
@@ -66,19 +70,35 @@ def test_wrapper_script_two_seeds(inputs, tmp_path):
 @pytest.mark.parametrize("case, args, status, message", [
     ("missing input", ["missing.stl", "o.stl", "--seed", SEED, "--radius", 5], 1, "no such file"),
     ("garbage input", ["garbage.stl", "o.stl", "--seed", SEED, "--radius", 5], 1, "no facets"),
+    ("empty input", ["empty.stl", "o.stl", "--seed", SEED, "--radius", 5], 1, "no facets"),
     ("unknown input format", ["box.xyz", "o.stl", "--seed", SEED, "--radius", 5], 2, "unknown mesh format"),
+    ("input format read-only by name", ["box.3mf", "o.stl", "--seed", SEED, "--radius", 5], 2,
+     "unknown mesh format"),
+    ("input without extension", ["box", "o.stl", "--seed", SEED, "--radius", 5], 2, "no file extension"),
     ("unknown output format", ["box.stl", "o.foo", "--seed", SEED, "--radius", 5], 2, "unknown mesh format"),
     ("bad seed", ["box.stl", "o.stl", "--seed", "37,60", "--radius", 5], 2, "X,Y,Z"),
     ("seed not a number", ["box.stl", "o.stl", "--seed", "a,b,c", "--radius", 5], 2, "not a number"),
+    ("infinite seed", ["box.stl", "o.stl", "--seed", "37,60,inf", "--radius", 5], 2, "finite"),
     ("no seed", ["box.stl", "o.stl", "--radius", 5], 2, "--seed"),
+    ("radius not a number", ["box.stl", "o.stl", "--seed", SEED, "--radius", "5mm"], 2, "not a number"),
     ("negative radius", ["box.stl", "o.stl", "--seed", SEED, "--radius", -5], 2, "must be > 0"),
+    ("zero radius", ["box.stl", "o.stl", "--seed", SEED, "--radius", 0], 2, "must be > 0"),
     ("nan radius", ["box.stl", "o.stl", "--seed", SEED, "--radius", "nan"], 2, "finite"),
     ("no radius", ["box.stl", "o.stl", "--seed", SEED], 2, "--radius"),
     ("both radii", ["box.stl", "o.stl", "--seed", SEED, "--radius", 5, "--radius-at", "0,60,40:3"], 2,
      "not allowed"),
     ("bad control point", ["box.stl", "o.stl", "--seed", SEED, "--radius-at", "0,60,40"], 2, "X,Y,Z:R"),
+    ("bad control radius", ["box.stl", "o.stl", "--seed", SEED, "--radius-at", "0,60,40:-3"], 2, "must be > 0"),
+    ("negative tolerance", ["box.stl", "o.stl", "--seed", SEED, "--radius", 5, "--tolerance", -1], 2, ">= 0"),
     ("bad angle", ["box.stl", "o.stl", "--seed", SEED, "--radius", 5, "--feature-angle", 200], 2, "180"),
-    ("no chain found", ["box.stl", "o.stl", "--seed", "50,30,20", "--radius", 5], 1, "sharp edge"),
+    ("angle not a number", ["box.stl", "o.stl", "--seed", SEED, "--radius", 5, "--feature-angle", "x"], 2,
+     "not a number"),
+    ("no chain found", ["box.stl", "o.stl", "--seed", "50,30,20", "--radius", 5], 1, "no sharp edge"),
+    ("no edge that sharp", ["box.stl", "o.stl", "--seed", SEED, "--radius", 5, "--feature-angle", 120], 1,
+     "no sharp edge"),
+    ("radius too large", ["box.stl", "o.stl", "--seed", SEED, "--radius", 50], 1, "too large"),
+    ("control point off the chain", ["box.stl", "o.stl", "--seed", SEED, "--radius-at", "37,60,40:3",
+                                     "--radius-at", "500,60,40:6"], 1, "from the chain"),
     ("output folder missing", ["box.stl", "nofolder/o.stl", "--seed", SEED, "--radius", 5], 1,
      "cannot write"),
 ])
@@ -107,10 +127,60 @@ def test_usage_without_command():
     assert run.returncode == 2 and "usage" in run.stderr
 
 
-def test_demo_reports_a_missing_script_clearly_or_runs(tmp_path):
-    from MeshRound import cli
-    run = meshround("demo", "--out", tmp_path / "demo")
-    if os.path.isfile(cli.DEMO_SCRIPT):
-        assert run.returncode == 0, run.stderr
-    else:
-        assert run.returncode == 1 and "srail_demo.py" in run.stderr
+@pytest.mark.parametrize("ext", cli.READ_EXTENSIONS)
+def test_every_listed_format_reads_back(tmp_path, box, ext):
+    """What the CLI accepts by extension is what FreeCAD's Mesh module really reads and writes."""
+    path = str(tmp_path / f"box.{ext}")
+    box.write(path)
+    assert Mesh.Mesh(path).CountFacets == box.CountFacets
+
+
+@pytest.mark.parametrize("ext", cli.WRITE_EXTENSIONS[len(cli.READ_EXTENSIONS):])
+def test_every_listed_write_only_format_writes(tmp_path, box, ext):
+    path = tmp_path / f"box.{ext}"
+    box.write(str(path))
+    assert path.stat().st_size > 0
+
+
+@pytest.mark.parametrize("ext", ["off", "bms", "smf", "nas", "ast"])
+def test_round_other_input_formats(inputs, tmp_path, box, ext):
+    source = tmp_path / f"box.{ext}"
+    box.write(str(source))
+    out = tmp_path / "rounded.x3d"  # a write-only format
+    run = meshround("round", source, out, "--seed", SEED, "--radius", 5)
+    assert run.returncode == 0, run.stderr
+    assert out.stat().st_size > 0
+
+
+def test_demo_script_missing_is_a_clear_error(monkeypatch, tmp_path, capsys):
+    monkeypatch.setattr(cli, "DEMO_SCRIPTS", (str(tmp_path / "nowhere" / "srail_demo.py"),))
+    assert cli.main(["demo", "--out", str(tmp_path / "demo")]) == 1
+    assert "srail_demo.py is missing" in capsys.readouterr().err
+    assert not (tmp_path / "demo").exists()
+
+
+def test_demo_finds_the_installed_copy(monkeypatch, tmp_path):
+    """Installed (tools/setup.sh), the demo's files sit in the workbench folder, not in a source tree."""
+    installed = tmp_path / "resources" / "srail_demo.py"
+    installed.parent.mkdir()
+    installed.write_text("")
+    monkeypatch.setattr(cli, "DEMO_SCRIPTS", (str(tmp_path / "no_tree" / "srail_demo.py"), str(installed)))
+    assert cli.demo_script() == str(installed)
+
+
+def test_demo_runs(tmp_path):
+    """`meshround demo`: both shoulders rounded twice, every output written (about 15 s: FreeCAD renders)."""
+    out = tmp_path / "demo"
+    run = meshround("demo", "--out", out)
+    assert run.returncode == 0, run.stderr
+    names = ["srail_die.stl", "srail_rounded_constant.stl", "srail_rounded_constant.obj",
+             "srail_rounded_variable.stl", "srail_rounded_variable.obj", "srail_rounding.FCStd",
+             "srail_report.json", "srail_before_after.png"]
+    assert sorted(os.listdir(out)) == sorted(names)
+    report = json.loads((out / "srail_report.json").read_text())
+    assert report["constant"]["report"]["chains"] == 2
+    assert [v["report"]["chains"] for v in report["variable"]] == [1, 1]
+    assert len(report["constant"]["report"]["per_chain"]) == 2
+    rounded = Mesh.Mesh(str(out / "srail_rounded_constant.stl"))
+    assert rounded.CountFacets > report["facets_in"] and rounded.isSolid()
+    assert (out / "srail_before_after.png").read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"

@@ -18,8 +18,12 @@ import sys
 import tempfile
 
 FREECAD_LIB = "/usr/lib/freecad-python3/lib"
-REPO_ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__)))))
-DEMO_SCRIPT = os.path.join(REPO_ROOT, "resources", "srail_demo.py")
+MOD_ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))  # .../Mod/MeshRound
+REPO_ROOT = os.path.dirname(os.path.dirname(MOD_ROOT))
+# The demo script: in the source tree (<repo>/resources), or in the installed workbench, where
+# tools/setup.sh copies the demo's files (~/.local/share/FreeCAD/Mod/MeshRound/resources).
+DEMO_SCRIPTS = (os.path.join(REPO_ROOT, "resources", "srail_demo.py"),
+                os.path.join(MOD_ROOT, "resources", "srail_demo.py"))
 
 # What FreeCAD 0.20's Mesh module reads, and writes, chosen by file extension.
 READ_EXTENSIONS = ("stl", "ast", "obj", "ply", "off", "bms", "smf", "nas", "bdf")
@@ -109,7 +113,11 @@ def build_parser():
                      help="re-mesh facets within K x radius of a chain (default 3)")
     rnd.add_argument("--report", metavar="FILE", help="write the rounding report as JSON")
 
-    demo = commands.add_parser("demo", help="run the S-rail demo (resources/srail_demo.py)")
+    demo = commands.add_parser(
+        "demo", help="round the S-rail die's shoulders (constant and variable radius) into DIR",
+        description="Round both die shoulders of the S-rail die mesh, once with r = 5 mm and once with "
+                    "r = 3 -> 8 -> 3 mm, and write the meshes (STL, OBJ), an FCStd with the Rounding "
+                    "features, a JSON report and a before/after PNG into DIR (resources/srail_demo.py).")
     demo.add_argument("--out", metavar="DIR", default="out", help="output folder (default: out)")
     return parser
 
@@ -118,6 +126,9 @@ def check_extensions(parser, args):
     for path, allowed, role in ((args.input, READ_EXTENSIONS, "read"),
                                 (args.output, WRITE_EXTENSIONS, "write")):
         ext = os.path.splitext(path)[1].lstrip(".").lower()
+        if not ext:
+            parser.error(f"cannot {role} '{path}': no file extension to tell the mesh format "
+                         f"(known: {', '.join(allowed)})")
         if ext not in allowed:
             parser.error(f"cannot {role} '{path}': unknown mesh format '.{ext}' "
                          f"(known: {', '.join(allowed)})")
@@ -143,16 +154,27 @@ def run_round(args):
           f"facets, max deviation {r.get('max_deviation')}, {r.get('seconds', 0.0):.2f} s -> {args.output}")
 
 
+def demo_script():
+    """The first of DEMO_SCRIPTS that exists, or None."""
+    return next((path for path in DEMO_SCRIPTS if os.path.isfile(path)), None)
+
+
 def run_demo(out_dir):
-    """Run the S-rail demo script of the source tree (resources/srail_demo.py: main(out_dir))."""
-    if not os.path.isfile(DEMO_SCRIPT):
-        raise Failure(f"the demo script {DEMO_SCRIPT} is missing: `meshround demo` needs the MeshRound "
-                      "source tree (resources/srail_demo.py)")
+    """Run the S-rail demo (resources/srail_demo.py: main(out_dir))."""
+    script = demo_script()
+    if script is None:
+        raise Failure("the demo script srail_demo.py is missing (looked for "
+                      f"{' and '.join(DEMO_SCRIPTS)}); run tools/setup.sh from the MeshRound source tree")
     _import_freecad()
-    spec = importlib.util.spec_from_file_location("srail_demo", DEMO_SCRIPT)
+    spec = importlib.util.spec_from_file_location("srail_demo", script)
     module = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(module)
-    module.main(out_dir=out_dir)
+    try:
+        spec.loader.exec_module(module)
+        module.main(out_dir=out_dir)
+    except Failure:
+        raise
+    except Exception as exc:  # RoundingError naming the shoulder, a failed render, a write error, ...
+        raise Failure(f"the demo failed: {exc}") from exc
 
 
 def _import_freecad():
