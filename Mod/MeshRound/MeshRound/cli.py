@@ -150,8 +150,10 @@ def run_round(args):
         writes.append((args.report, lambda path: _dump_json(report, path)))
     _write_all_or_nothing(writes)
     r = result.report
+    deviation = r.get("max_deviation")
+    deviation = f"{deviation:.4f} mm" if isinstance(deviation, (int, float)) else "unknown"
     print(f"meshround: {r.get('chains')} chain(s) rounded, {r.get('facets_in')} -> {r.get('facets_out')} "
-          f"facets, max deviation {r.get('max_deviation')}, {r.get('seconds', 0.0):.2f} s -> {args.output}")
+          f"facets, max deviation {deviation}, {r.get('seconds', 0.0):.2f} s -> {args.output}")
 
 
 def demo_script():
