@@ -100,7 +100,7 @@ def test_variable_radius_law(doc, box_feature):
     obj = MeshRound.make_rounding(box_feature, BOX_SEED, law)
     doc.recompute()
     assert not is_invalid(obj), obj.getStatusString()
-    assert [tuple(p) for p in obj.RadiusLawPoints] == [(0, 60, 40), (100, 60, 40)]
+    assert [tuple(p) for p in obj.RadiusLaw] == [(0, 60, 40), (100, 60, 40)]
     assert obj.RadiusLawRadii == [3.0, 6.0]
     assert obj.Radius.Value == 6.0
 
@@ -180,7 +180,7 @@ def test_bad_input_marks_the_feature_invalid(doc, box_feature, box, rounding, ch
     elif change == "no seeds":
         rounding.Seeds = []
     elif change == "law mismatch":
-        rounding.RadiusLawPoints = [BOX_SEED]
+        rounding.RadiusLaw = [BOX_SEED]
     elif change == "no base":
         rounding.Base = None
     elif change == "part base":

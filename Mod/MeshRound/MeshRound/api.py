@@ -16,7 +16,7 @@ import time
 
 import numpy as np
 
-from . import inputs, meshconv, shapes
+from . import inputs, meshconv, progress, shapes
 from .errors import RoundingError, require_core
 
 __all__ = ["RoundingError", "RoundingResult", "round_edges", "round_arrays", "trace_chains",
@@ -125,10 +125,12 @@ def _round(vertices, triangles, arguments):
 
 
 def _call_engine(name, *args, **kwargs):
-    """Call core.<name>; anything the engine raises reaches the caller as a RoundingError."""
+    """Call core.<name>; anything the engine raises reaches the caller as a RoundingError.
+
+    Inside progress.busy() in the GUI the call runs on a worker thread while the window stays alive."""
     function = getattr(require_core(), name)
     try:
-        return function(*args, **kwargs)
+        return progress.wait_for(function, *args, **kwargs)
     except RoundingError:
         raise
     except (MemoryError, KeyboardInterrupt):

@@ -55,3 +55,26 @@ def wire_points(wire):
     if wire.isClosed() and points:
         points.append(points[0])
     return np.array(points, dtype=np.float64).reshape(-1, 3)
+
+
+def nearest_on_polylines(point, polylines):
+    """The point (x, y, z) on any of the polylines (each (s, 3), s >= 1) nearest to `point`."""
+    p = np.array([point[0], point[1], point[2]], dtype=np.float64)
+    best, best_distance = None, np.inf
+    for line in polylines:
+        line = np.asarray(line, dtype=np.float64).reshape(-1, 3)
+        if len(line) == 1:
+            candidates = line
+        else:
+            a, b = line[:-1], line[1:]
+            ab = b - a
+            length2 = np.einsum("ij,ij->i", ab, ab)
+            t = np.einsum("ij,ij->i", p - a, ab) / np.where(length2 > 0, length2, 1.0)
+            candidates = a + np.clip(t, 0.0, 1.0)[:, None] * ab
+        distances = np.linalg.norm(candidates - p, axis=1)
+        i = int(np.argmin(distances))
+        if distances[i] < best_distance:
+            best, best_distance = candidates[i], distances[i]
+    if best is None:
+        raise ValueError("no polyline to project on")
+    return tuple(float(c) for c in best)

@@ -6,7 +6,7 @@ Properties (group "Rounding"):
   Base             App::PropertyLink        any Mesh feature, another Rounding included (roundings chain)
   Seeds            App::PropertyVectorList  each selects the sharp edge nearest to it and its whole chain
   Radius           App::PropertyLength      constant radius; takes expressions (e.g. Spreadsheet.r)
-  RadiusLawPoints  App::PropertyVectorList  variable radius: control points on the chain ...
+  RadiusLaw        App::PropertyVectorList  variable radius: control points on the chain ...
   RadiusLawRadii   App::PropertyFloatList   ... and their radii in mm (same length). A non-empty law wins
                                             over Radius.
   Tolerance        App::PropertyLength      chordal tolerance, 0 = largest radius / 100
@@ -35,7 +35,7 @@ PROPERTIES = [
     ("App::PropertyVectorList", "Seeds", "Points near the sharp edges to round: each selects the "
      "nearest sharp edge and its whole chain", None),
     ("App::PropertyLength", "Radius", "Rolling ball radius (ignored when a radius law is given)", 5.0),
-    ("App::PropertyVectorList", "RadiusLawPoints", "Variable radius: control points on the chain", None),
+    ("App::PropertyVectorList", "RadiusLaw", "Variable radius: control points on the chain", None),
     ("App::PropertyFloatList", "RadiusLawRadii", "Variable radius: radius in mm at each control point",
      None),
     ("App::PropertyLength", "Tolerance", "Chordal tolerance of the new facets; 0 = radius / 100", 0.0),
@@ -68,6 +68,9 @@ class Rounding:
 
     def onDocumentRestored(self, obj):
         self.ensure_properties(obj)
+        if "RadiusLawPoints" in obj.PropertiesList:  # its name in files saved before 0.1.0
+            obj.RadiusLaw = obj.RadiusLawPoints
+            obj.removeProperty("RadiusLawPoints")
 
     def execute(self, obj):
         base = obj.Base
@@ -103,10 +106,10 @@ def check_base(base):
 
 def radius_argument(obj):
     """The radius to hand to api.round_edges: the law's (point, r) pairs if it has any, else Radius."""
-    points, radii = list(obj.RadiusLawPoints), list(obj.RadiusLawRadii)
+    points, radii = list(obj.RadiusLaw), list(obj.RadiusLawRadii)
     if len(points) != len(radii):
-        raise RoundingError(f"RadiusLawPoints has {len(points)} entries but RadiusLawRadii has "
-                            f"{len(radii)}: they must pair up")
+        raise RoundingError(f"RadiusLaw has {len(points)} points but RadiusLawRadii has {len(radii)} "
+                            "radii: they must pair up")
     if points:
         return list(zip(points, radii))
     return obj.Radius.Value
@@ -136,7 +139,7 @@ def make_rounding(base, seeds, radius, tolerance=0, feature_angle=30, reach=3, n
     obj.Seeds = seed_vectors
     obj.Radius = largest_radius
     if law is not None:
-        obj.RadiusLawPoints = [FreeCAD.Vector(*row[:3]) for row in law.tolist()]
+        obj.RadiusLaw = [FreeCAD.Vector(*row[:3]) for row in law.tolist()]
         obj.RadiusLawRadii = law[:, 3].tolist()
     obj.Tolerance = tolerance
     obj.FeatureAngle = feature_angle

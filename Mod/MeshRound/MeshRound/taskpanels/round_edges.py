@@ -21,7 +21,10 @@ from ..progress import busy
 from . import overlays
 from .round_edges_form import PICK_LAW_POINT, RoundEdgesForm, quantity_value
 
-PREVIEW_DELAY_MS = 400   # debounce: recompute the preview once the user stops typing/picking
+PREVIEW_DELAY_MS = 150   # debounce: recompute the preview once the user stops typing/picking
+# The live preview rounds at a chordal tolerance of at least this fraction of the largest radius (visually
+# the same round, and several times faster on big meshes); OK rounds at the tolerance asked for.
+PREVIEW_TOLERANCE_FRACTION = 1.0 / 30.0
 GHOST_TRANSPARENCY = 70  # the base mesh stays pickable but lets the preview show through
 DEFAULTS = dict(radius=5.0, tolerance=0.0, feature_angle=30.0, reach=3.0)
 
@@ -43,6 +46,7 @@ class RoundEdgesPanel:
         self.seeds = [FreeCAD.Vector(p) for p in values["seeds"]]
         self.law = list(values["law"])
         self.chain_wires, self.result, self.error = [], None, None
+        self._computing = False
 
         self.form = RoundEdgesForm(values["radius"], values["tolerance"], values["feature_angle"],
                                    values["reach"])
@@ -93,9 +97,15 @@ class RoundEdgesPanel:
         self._seeds_changed()
 
     def add_radius_point(self, point, radius=None):
-        """Add a variable-radius control point (radius defaults to the current constant radius)."""
+        """Add a variable-radius control point at the point of the selected chains nearest to `point`
+        (radius defaults to the current constant radius). True if added."""
+        if not self.chain_wires:
+            self._show_error("Radius point not added: select the edge first (pick it as an edge to round); "
+                             "radius points lie on its chain.")
+            return False
+        on_chain = shapes.nearest_on_polylines(point, [shapes.wire_points(w) for w in self.chain_wires])
         radius = radius if radius is not None else quantity_value(self.form.radius)
-        self.law.append((point[0], point[1], point[2], float(radius)))
+        self.law.append((*on_chain, float(radius)))
         self.form.show_law(self.law)
         self._refresh_marks()
         self.schedule_preview()
@@ -131,26 +141,44 @@ class RoundEdgesPanel:
         self.update_preview()
         return self.result
 
+    def preview_parameters(self):
+        """parameters() with the preview's (coarser) tolerance; and the tolerance OK will use, in mm."""
+        p = self.parameters()
+        largest = max(r for _, r in p["radius"]) if isinstance(p["radius"], list) else p["radius"]
+        final = p["tolerance"] or largest / 100.0
+        p["tolerance"] = max(final, largest * PREVIEW_TOLERANCE_FRACTION)
+        return p, final
+
     def update_preview(self):
+        if self._computing:  # called again while the engine runs (FreeCAD processes events meanwhile)
+            self._timer.start()
+            return
         self.result = None
         self._preview.clear()
         if not self.seeds:
             self.form.show_status("Click near a sharp edge of the mesh to select it.")
             return
+        self._computing = True
         try:
+            parameters, final_tolerance = self.preview_parameters()
             with busy("Previewing rounding"):
-                self.result = api.round_arrays(self.vertices, self.triangles, **self.parameters())
+                self.result = api.round_arrays(self.vertices, self.triangles, **parameters)
         except (RoundingError, ValueError) as exc:
             self._show_error(str(exc))
             return
+        finally:
+            self._computing = False
         contacts = [shapes.wire_points(w) for w in self.result.contacts]
         self._preview.show(overlays.mesh_node(self.result.vertices, self.result.triangles),
                            overlays.polylines_node(contacts, overlays.CONTACT_COLOR, width=2.0))
         self.error = None
-        self.form.show_status(_summary(self.result.report))
+        self.form.show_status(_summary(self.result.report, parameters["tolerance"], final_tolerance))
 
     # ------------------------------------------------------------------ OK / Cancel
     def accept(self):
+        """OK: one undo transaction of recorded commands.  If they fail, or the rounding they make fails
+        to recompute, the transaction is undone, the panel stays open and shows why."""
+        self._timer.stop()
         if not self.seeds:
             self._show_error("Select at least one sharp edge (click next to it) before OK.")
             return False
@@ -159,15 +187,20 @@ class RoundEdgesPanel:
         except (RoundingError, ValueError) as exc:
             self._show_error(str(exc))
             return False
-        self._leave_view_state()  # before the commands: make_rounding hides the base itself
+        view_state = self._leave_view_state()  # before the commands: make_rounding hides the base itself
+        names_before = {o.Name for o in self.doc.Objects}
         self.doc.openTransaction("Edit rounding" if self.feature else "Round edges")
         try:
             for line in commands + [f"{_doc_expr(self.doc)}.recompute()"]:
                 FreeCADGui.doCommand(line)
+            failure = self._recompute_failure(names_before)
         except Exception as exc:  # doCommand reports Python errors as generic exceptions
+            failure = f"Could not apply: {exc}"
+        if failure:
             self.doc.abortTransaction()
+            _apply_view_state(view_state)  # e.g. make_rounding hid the base: show it as it was
             self._enter_view_state()
-            self._show_error(f"Could not apply: {exc}")
+            self._show_error(failure)
             return False
         self.doc.commitTransaction()
         self._finish()
@@ -194,7 +227,7 @@ class RoundEdgesPanel:
         p = self.parameters()
         obj = f"{_doc_expr(self.doc)}.getObject({self.feature.Name!r})"
         lines = [f"{obj}.Seeds = {_vectors_code(p['seeds'])}",
-                 f"{obj}.RadiusLawPoints = {_vectors_code([row[:3] for row in self.law])}",
+                 f"{obj}.RadiusLaw = {_vectors_code([row[:3] for row in self.law])}",
                  f"{obj}.RadiusLawRadii = {[row[3] for row in self.law]!r}",
                  f"{obj}.Tolerance = {p['tolerance'] or 0.0!r}",
                  f"{obj}.FeatureAngle = {p['feature_angle']!r}",
@@ -202,6 +235,20 @@ class RoundEdgesPanel:
         if not self._radius_expression:
             lines.insert(1, f"{obj}.Radius = {quantity_value(self.form.radius)!r}")
         return lines
+
+    def _recompute_failure(self, names_before):
+        """The error of the rounding that OK made or edited, if its recompute failed; else None."""
+        if self.feature:
+            rounding = self.feature
+        else:
+            made = [o for o in self.doc.Objects
+                    if o.Name not in names_before and o.TypeId == "Mesh::FeaturePython"]
+            rounding = made[0] if made else None
+        if rounding is None:
+            return "Could not apply: no Rounding feature was made"
+        if "Invalid" in rounding.State or "Touched" in rounding.State:
+            return f"Rounding failed: {rounding.getStatusString() or 'recompute failed'}"
+        return None
 
     def _finish(self):
         """Close the dialog (and edit mode); overlays and observer go away."""
@@ -293,9 +340,10 @@ class RoundEdgesPanel:
             setattr(vobj, name, value)
 
     def _leave_view_state(self):
-        for vobj, name, value in reversed(self._saved_view_state):
-            setattr(vobj, name, value)
-        self._saved_view_state = []
+        """Restore the view properties the panel changed; returns them (for _apply_view_state)."""
+        saved, self._saved_view_state = self._saved_view_state, []
+        _apply_view_state(saved)
+        return saved
 
 
 class _PickObserver:
@@ -322,9 +370,14 @@ class _PickObserver:
         QtCore.QTimer.singleShot(0, FreeCADGui.Selection.clearSelection)
 
 
+def _apply_view_state(saved):
+    for vobj, name, value in reversed(saved):
+        setattr(vobj, name, value)
+
+
 def _feature_values(feature):
     return dict(seeds=list(feature.Seeds),
-                law=[(p.x, p.y, p.z, r) for p, r in zip(feature.RadiusLawPoints, feature.RadiusLawRadii)],
+                law=[(p.x, p.y, p.z, r) for p, r in zip(feature.RadiusLaw, feature.RadiusLawRadii)],
                 radius=feature.Radius.Value, tolerance=feature.Tolerance.Value,
                 feature_angle=feature.FeatureAngle.Value, reach=feature.Reach)
 
@@ -336,13 +389,16 @@ def _expression_of(obj, name):
     return dict((path.lstrip("."), expr) for path, expr in obj.ExpressionEngine).get(name)
 
 
-def _summary(report):
+def _summary(report, tolerance, final_tolerance):
     deviation = report.get("max_deviation")
     angle = report.get("min_new_angle_deg")
-    return (f"Preview: {report.get('chains')} chain(s), {report.get('facets_removed')} facets removed, "
+    text = (f"Preview: {report.get('chains')} chain(s), {report.get('facets_removed')} facets removed, "
             f"{report.get('facets_added')} added; max deviation "
             f"{'-' if deviation is None else f'{deviation:.4f} mm'}, smallest new angle "
             f"{'-' if angle is None else f'{angle:.1f} deg'}; {report.get('seconds', 0.0):.2f} s.")
+    if tolerance > final_tolerance:
+        text += f" (Previewed at tolerance {tolerance:.3g} mm; OK rounds at {final_tolerance:.3g} mm.)"
+    return text
 
 
 def _doc_expr(doc):

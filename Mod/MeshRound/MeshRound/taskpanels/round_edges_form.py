@@ -73,7 +73,8 @@ class RoundEdgesForm(QtGui.QWidget):
                                    tooltip="Rolling ball radius (used when the table below is empty)")
         row.addRow("Radius:", self.radius)
         layout.addLayout(row)
-        law_hint = QtGui.QLabel("Variable radius: points on the chain (empty: constant radius)")
+        law_hint = QtGui.QLabel("Variable radius: with \"a variable-radius point\" checked, click near the "
+                                "chain; each point lands on the chain (empty table: constant radius).")
         law_hint.setWordWrap(True)
         layout.addWidget(law_hint)
         self.law_table = QtGui.QTableWidget(0, len(LAW_COLUMNS))
