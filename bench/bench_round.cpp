@@ -6,6 +6,7 @@
 #include <cmath>
 #include <map>
 
+#include "meshround/mesh.h"
 #include "meshround/round.h"
 
 using namespace meshround;
@@ -61,7 +62,18 @@ void BM_RoundOneChain(benchmark::State& state) {
   state.counters["facets"] = double(F.rows());
 }
 
+// The O(n) part alone: vertex-facet adjacency of the whole mesh, built once per call.
+void BM_AdjacencyBuild(benchmark::State& state) {
+  const auto [V, F] = box_mesh(int(state.range(0)));
+  for (auto _ : state) {
+    MeshTopology topology(V, F);
+    benchmark::DoNotOptimize(&topology);
+  }
+  state.counters["facets"] = double(F.rows());
+}
+
 }  // namespace
 
+BENCHMARK(BM_AdjacencyBuild)->Arg(10000)->Arg(100000)->Arg(1000000)->Unit(benchmark::kMillisecond)->MinTime(0.5);
 BENCHMARK(BM_RoundOneChain)->Arg(10000)->Arg(100000)->Arg(1000000)->Unit(benchmark::kMillisecond)->MinTime(0.5);
 BENCHMARK_MAIN();

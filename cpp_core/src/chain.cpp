@@ -252,32 +252,57 @@ double SharpChain::project(const Vec3& p, double* distance) const {
   return s_best;
 }
 
+double SharpChain::project_from(const Vec3& p, double s_hint, double* distance) const {
+  const int n = int(points.size()), segs = closed ? n : n - 1;
+  auto dist2 = [&](int i, double* s_out) {
+    double t;
+    const Vec3 q = closest_point_on_segment(p, points[i], points[(i + 1) % n], &t);
+    if (s_out) *s_out = arc_length[i] + t * (points[(i + 1) % n] - points[i]).norm();
+    return (q - p).squaredNorm();
+  };
+  double local;
+  int i = segment_at(s_hint, &local);
+  double s_best = 0, best = dist2(i, &s_best);
+  // Walk both ways while the distance falls, looking a few segments ahead past flat stretches.
+  for (int dir : {-1, 1}) {
+    for (int j = i, misses = 0; misses < 3;) {
+      j += dir;
+      if (closed) j = (j + segs) % segs;
+      else if (j < 0 || j >= segs) break;
+      if (j == i) break;
+      double s_j;
+      const double d = dist2(j, &s_j);
+      if (d < best) best = d, s_best = s_j, i = j, misses = 0;
+      else ++misses;
+    }
+  }
+  if (distance) *distance = std::sqrt(best);
+  return s_best;
+}
+
 BaseMeshes collect_base_meshes(const MeshTopology& mesh, const SharpChain& chain, double reach_distance,
                                double feature_angle_deg) {
   BaseMeshes base;
   std::unordered_set<std::uint64_t> chain_edges;
   const int n = int(chain.vertices.size());
   for (int i = 0; i < chain.num_edges(); ++i) chain_edges.insert(edge_key(chain.vertices[i], chain.vertices[(i + 1) % n]));
-  // Nearness to the chain through a grid of its segments, so the flood costs what the band costs.
-  BoxGrid grid(reach_distance);
-  for (int i = 0; i < chain.num_edges(); ++i) {
-    const Vec3 &p = chain.points[i], &q = chain.points[(i + 1) % n];
-    grid.insert(i, p.cwiseMin(q), p.cwiseMax(q));
-  }
-  std::vector<int> near;
-  auto within_reach = [&](int f) {
-    for (int k = 0; k < 3; ++k) {
-      const Vec3 p = mesh.corner(f, k), r(reach_distance, reach_distance, reach_distance);
-      near.clear();
-      grid.query(p - r, p + r, near);
-      for (int i : near) {
-        double t;
-        if ((closest_point_on_segment(p, chain.points[i], chain.points[(i + 1) % n], &t) - p).norm() <= reach_distance)
-          return true;
-      }
-    }
-    return false;
+  // Nearness to the chain: each vertex projected from its neighbour's projection, so the flood costs
+  // what the band costs.
+  auto project = [&](int v, double s_hint) -> const ChainProjection& {
+    auto [it, fresh] = base.projection.try_emplace(v);
+    if (fresh) it->second.s = chain.project_from(mesh.point(v), s_hint, &it->second.distance);
+    return it->second;
   };
+  auto within_reach = [&](int f, double s_hint) {  // projects all three corners: trimming needs them
+    bool in = false;
+    for (int k = 0; k < 3; ++k) in |= project(mesh.F(f, k), s_hint).distance <= reach_distance;
+    return in;
+  };
+  for (int i = 0; i < n; ++i) project(chain.vertices[i], chain.arc_length[i]);
+  for (int i = 0; i < chain.num_edges(); ++i) {
+    within_reach(chain.facet_a[i], chain.arc_length[i]);
+    within_reach(chain.facet_b[i], chain.arc_length[i]);
+  }
   for (int side = 0; side < 2; ++side) {
     std::vector<int> todo;
     for (int f : side == 0 ? chain.facet_a : chain.facet_b) {
@@ -305,7 +330,7 @@ BaseMeshes collect_base_meshes(const MeshTopology& mesh, const SharpChain& chain
                                 ": the sharp edges there do not separate two base meshes");
           continue;
         }
-        if (!within_reach(g)) {
+        if (!within_reach(g, base.projection.at(a).s)) {
           base.reach_limit[side].insert(key);
           continue;
         }

@@ -37,11 +37,12 @@ struct ContactLineDistance {
   }
 };
 
-constexpr double kFar = 1e30;  // signed distance of a vertex too far from the chain to be cut
+constexpr double kFar = 1e30;  // |signed distance| of a vertex whose side is clear without projecting it
 
 struct VertexSide {
-  double d;  // signed distance (0 = on the trim line after snapping)
-  double u;
+  double d = 0;        // signed distance (0 = on the trim line after snapping); +-kFar: side known only
+  double u = 0;
+  bool exact = false;  // d is the true distance
 };
 
 double wrapped_delta(const RoundingSurface& s, double from, double to) {
@@ -99,19 +100,26 @@ TrimLines trim_base_meshes(const MeshTopology& mesh, const SharpChain& chain, co
                            const RoundingSurface& surface, const std::vector<ProfileStation>& end_profiles,
                            const TrimOptions& opt, MeshEdit& edit) {
   TrimLines out;
-  // How far from the chain each contact line gets, with room to spare: beyond it nothing is cut.
-  double band_reach[2] = {0, 0};
+  // How far from the chain each contact line gets. Vertices well inside that range are in the band and
+  // well beyond it outside: only their side matters, unless a cut edge needs their exact distance.
+  double nearest[2] = {INFINITY, INFINITY}, farthest[2] = {0, 0};
   for (const ProfileStation& st : end_profiles)
-    for (int k = 0; k < 2; ++k)
-      band_reach[k] = std::max(band_reach[k], 1.5 * (st.contact[k] - chain.point_at(st.s)).norm() + st.radius);
+    for (int k = 0; k < 2; ++k) {
+      const double d = (st.contact[k] - chain.point_at(st.s)).norm();
+      nearest[k] = std::min(nearest[k], d), farthest[k] = std::max(farthest[k], d);
+    }
   const std::unordered_set<int> chain_vertices(chain.vertices.begin(), chain.vertices.end());
   for (int side = 0; side < 2; ++side) {
     const ContactLineDistance distance{surface, chain, side};
     std::unordered_map<int, VertexSide> vs;
     std::unordered_map<int, double> cut_u;  // cut point -> its line parameter
-    auto exact = [&](int v) -> VertexSide& {  // a far vertex's true distance, when a cut needs it
+    auto exact = [&](int v) -> VertexSide& {  // a vertex's true distance, when a cut needs it
       VertexSide& s = vs[v];
-      if (s.d == kFar) s.d = distance(edit.point(v), s.u, &s.u);
+      if (!s.exact) {
+        s.d = distance(edit.point(v), s.u, &s.u);
+        if (chain_vertices.count(v)) s.d = std::min(s.d, -1e-9);  // the chain is inside the band by definition
+        s.exact = true;
+      }
       return s;
     };
     for (int f : base.facets[side])
@@ -120,12 +128,13 @@ TrimLines trim_base_meshes(const MeshTopology& mesh, const SharpChain& chain, co
         if (vs.count(v)) continue;
         VertexSide s;
         Vec3 away;
-        double from_chain;
-        const double s_chain = chain.project(mesh.point(v), &from_chain);
-        if (from_chain > band_reach[side]) {  // clearly outside the band: skip the exact projection
-          vs[v] = {kFar, s_chain};
+        const ChainProjection& near = base.projection.at(v);
+        const double from_chain = near.distance, s_chain = near.s;
+        if (from_chain > 1.3 * farthest[side] || from_chain < 0.7 * nearest[side]) {  // clearly out / in
+          vs[v] = {from_chain < 0.7 * nearest[side] ? -kFar : kFar, s_chain, false};
           continue;
         }
+        s.exact = true;
         s.d = distance(mesh.point(v), s_chain, &s.u, &away);
         if (chain_vertices.count(v)) s.d = std::min(s.d, -1e-9);  // the chain is inside the band by definition
         // A vertex very near the line moves onto it (when that does not change the surface): no slivers.

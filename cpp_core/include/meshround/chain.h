@@ -38,6 +38,9 @@ struct SharpChain {
   double project(const Vec3& p, double* distance) const;
   // Builds the segment grid used by project(); cell ~ the distances queried (e.g. the radius).
   void index_segments(double cell);
+  // The same, found by walking the chain from arc length s_hint while the distance falls: O(1) for a
+  // point whose neighbour's projection is known (a flood over the mesh from the chain).
+  double project_from(const Vec3& p, double s_hint, double* distance) const;
 
  private:
   friend SharpChain trace_chain(const MeshTopology&, const Vec3&, double, double);
@@ -56,8 +59,14 @@ SharpChain trace_chain(const MeshTopology& mesh, const Vec3& seed, double featur
 
 // The facets within `reach_distance` of the chain, split into its two sides. A base mesh is bounded
 // by the chain, other sharp edges, the mesh boundary and the reach.
+struct ChainProjection {
+  double s = 0;         // arc length of the nearest chain point
+  double distance = 0;  // distance to it
+};
+
 struct BaseMeshes {
   std::vector<int> facets[2];                  // side A = 0, side B = 1
+  std::unordered_map<int, ChainProjection> projection;  // every vertex of the base facets
   std::unordered_map<int, int> side_of;        // facet -> side
   std::unordered_set<std::uint64_t> walls[2];  // edges where a side stops (sharp edge, boundary)
   std::unordered_set<std::uint64_t> reach_limit[2];  // edges where a side stops only for the reach
