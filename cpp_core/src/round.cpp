@@ -156,6 +156,30 @@ RoundedChain round_one_chain(const MeshTopology& mesh, const Vec3& seed, const R
   return out;
 }
 
+// Each chain's options: a radius law keeps the control points nearest to that chain (each point belongs
+// to one chain); a chain without a control point is an error, as is a point far from every chain.
+std::vector<RoundOptions> options_per_chain(const RoundOptions& opt, const std::vector<SharpChain>& chains,
+                                            const std::vector<Vec3>& picked) {
+  std::vector<RoundOptions> out(chains.size(), opt);
+  if (opt.radius_law.empty() || chains.size() < 2) return out;
+  for (RoundOptions& o : out) o.radius_law.clear(), o.tolerance = opt.effective_tolerance();  // one for all
+  for (const RadiusControl& c : opt.radius_law) {
+    size_t best = 0;
+    double best_d = INFINITY;
+    for (size_t k = 0; k < chains.size(); ++k) {
+      double d;
+      chains[k].project(c.point, &d);
+      if (d < best_d) best_d = d, best = k;
+    }
+    out[best].radius_law.push_back(c);  // RadiusLaw reports a point too far from its chain
+  }
+  for (size_t k = 0; k < chains.size(); ++k)
+    if (out[k].radius_law.empty())
+      throw RoundingError("no radius control point lies on the chain picked at " + format_point(picked[k]) +
+                          ": give each chain at least one (point, radius)");
+  return out;
+}
+
 }  // namespace
 
 std::vector<SharpChain> find_chains(const Points& V, const Triangles& F, const std::vector<Vec3>& seeds,
@@ -180,7 +204,8 @@ RoundResult round_edges(const Points& V, const Triangles& F, const std::vector<V
   if (seeds.empty()) throw RoundingError("no seed given: pick a point on a sharp edge");
   RoundResult result;
   // One seed per distinct chain, found on the input; each chain is then rounded on the latest mesh.
-  std::vector<Vec3> chain_seeds;
+  std::vector<SharpChain> chains;
+  std::vector<Vec3> chain_seeds, picked;
   const MeshTopology input(V, F);
   std::set<std::vector<int>> seen;
   for (const Vec3& seed : seeds) {
@@ -188,20 +213,31 @@ RoundResult round_edges(const Points& V, const Triangles& F, const std::vector<V
     SharpChain c = trace_chain(input, seed, opt.feature_angle_deg, opt.reach * opt.max_radius());
     std::vector<int> key = c.vertices;
     std::sort(key.begin(), key.end());
+    if (!seen.insert(key).second) continue;
+    // Where chains meet, the rounds need a corner blend, which is not made: refuse rather than guess.
+    for (size_t k = 0; k < chains.size(); ++k)
+      for (int v : {c.vertices.front(), c.vertices.back()})
+        if (std::find(chains[k].vertices.begin(), chains[k].vertices.end(), v) != chains[k].vertices.end())
+          throw RoundingError("the chains picked at " + format_point(picked[k]) + " and " + format_point(seed) +
+                              " meet at " + format_point(input.point(v)) +
+                              "; chains that meet at a corner cannot be rounded together (round one of them)");
     // The middle of an edge of the chain picks the same chain again, even after other chains are rounded.
     const size_t i = (c.points.size() - 1) / 2;
-    if (seen.insert(key).second) chain_seeds.push_back(0.5 * (c.points[i] + c.points[(i + 1) % c.points.size()]));
+    chain_seeds.push_back(0.5 * (c.points[i] + c.points[(i + 1) % c.points.size()]));
+    picked.push_back(seed);
+    chains.push_back(std::move(c));
   }
+  const std::vector<RoundOptions> chain_options = options_per_chain(opt, chains, picked);
   Points cur_V;
   Triangles cur_F;
   for (size_t k = 0; k < chain_seeds.size(); ++k) {
     Points next_V;
     Triangles next_F;
     if (k == 0) {
-      result.chains.push_back(round_one_chain(input, chain_seeds[k], opt, result.report, next_V, next_F));
+      result.chains.push_back(round_one_chain(input, chain_seeds[k], chain_options[k], result.report, next_V, next_F));
     } else {
       const MeshTopology mesh(cur_V, cur_F);
-      result.chains.push_back(round_one_chain(mesh, chain_seeds[k], opt, result.report, next_V, next_F));
+      result.chains.push_back(round_one_chain(mesh, chain_seeds[k], chain_options[k], result.report, next_V, next_F));
     }
     cur_V.swap(next_V);
     cur_F.swap(next_F);

@@ -14,7 +14,8 @@ struct RadiusControl {
 
 struct RoundOptions {
   double radius = 1.0;                 // ball radius (mm); used when `radius_law` is empty
-  std::vector<RadiusControl> radius_law;  // variable radius: control points along the chain (optional)
+  std::vector<RadiusControl> radius_law;  // variable radius: control points (optional); with several
+                                          // chains, each point belongs to the chain nearest to it
   double tolerance = 0.0;              // chordal tolerance of the new facets; <= 0 means r_max / 100
   double feature_angle_deg = 30.0;     // an edge is sharp when its two facets turn by at least this
   double reach = 3.0;                  // base meshes are the facets within reach * r_max of the chain

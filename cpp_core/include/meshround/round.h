@@ -3,7 +3,9 @@
 //   trace_chain -> collect_base_meshes -> solve_station (adaptive) -> loft_profiles
 //     -> trim_base_meshes -> mesh_rounding_surface -> sew_round -> write_mesh
 //
-// Chains are rounded one after the other, each on the result of the previous one.
+// Chains are rounded one after the other, each on the result of the previous one. Chains that meet at a
+// corner are refused (the corner blend between their rounds is not made); a radius law is split among
+// the chains, each control point going to the chain nearest to it.
 #pragma once
 #include <map>
 #include <string>

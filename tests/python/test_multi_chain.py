@@ -1,0 +1,65 @@
+"""Several chains in one call: each chain gets the radius control points nearest to it, and chains that
+meet at a corner are refused (the corner blend is not made) with the input left as it was."""
+import numpy as np
+import pytest
+
+import FreeCAD
+
+import MeshRound
+from MeshRound import meshconv
+from conftest import BOX_OTHER_SEED, BOX_SEED, BOX_SIZE
+
+V = FreeCAD.Vector
+X, Y, Z = BOX_SIZE
+# Back edge (y = Y): 2 -> 6 mm from x = 0 to x = X; front edge (y = 0): 5 -> 3 mm.
+BACK_LAW = [(V(0, Y, Z), 2.0), (V(X, Y, Z), 6.0)]
+FRONT_LAW = [(V(0, 0, Z), 5.0), (V(X, 0, Z), 3.0)]
+
+
+def profile_radius(face, u):
+    """Radius of the circle through three points of the surface's profile at u (v = 0, 1/2, 1)."""
+    a, b, c = (np.array(tuple(face.Surface.value(u, v))) for v in (0.0, 0.5, 1.0))
+    return (np.linalg.norm(b - a) * np.linalg.norm(c - a) * np.linalg.norm(c - b)
+            / (2 * np.linalg.norm(np.cross(b - a, c - a))))
+
+
+def surface_near(faces, y):
+    """The rounding surface whose first profile lies at y (back or front edge)."""
+    return min(faces, key=lambda f: abs(f.Surface.value(f.ParameterRange[0], 0.5).y - y))
+
+
+@pytest.fixture(scope="module")
+def two_laws(box):
+    # The control points are given mixed up on purpose: each belongs to the chain nearest to it.
+    law = [BACK_LAW[0], FRONT_LAW[1], BACK_LAW[1], FRONT_LAW[0]]
+    return MeshRound.round_edges(box, [BOX_SEED, BOX_OTHER_SEED], law)
+
+
+def test_each_chain_follows_its_own_control_points(two_laws):
+    assert two_laws.report["chains"] == 2
+    for y, law in ((Y, BACK_LAW), (0.0, FRONT_LAW)):
+        face = surface_near(two_laws.surfaces, y)
+        u0, u1, _, _ = face.ParameterRange
+        ends = sorted([(face.Surface.value(u, 0.5).x, profile_radius(face, u)) for u in (u0, u1)])
+        assert ends[0][1] == pytest.approx(law[0][1], rel=1e-6)   # at x = 0
+        assert ends[1][1] == pytest.approx(law[1][1], rel=1e-6)   # at x = X
+
+
+def test_two_rounded_chains_leave_a_closed_clean_mesh(two_laws):
+    out = two_laws.mesh
+    assert out.isSolid() and not out.hasNonManifolds() and not out.hasSelfIntersections()
+    assert two_laws.report["max_deviation"] <= 6.0 / 100
+
+
+def test_chains_meeting_at_a_corner_are_refused_and_the_input_kept(box):
+    before = meshconv.mesh_to_arrays(box)
+    corner_edge_seed = V(X, Y / 2, Z)  # the top edge of the end face x = X meets the back edge at (X, Y, Z)
+    with pytest.raises(MeshRound.RoundingError, match=r"meet at \(100, 60, 40\)"):
+        MeshRound.round_edges(box, [BOX_SEED, corner_edge_seed], 3.0)
+    after = meshconv.mesh_to_arrays(box)
+    assert np.array_equal(before[0], after[0]) and np.array_equal(before[1], after[1])
+
+
+def test_a_chain_without_control_points_is_refused(box):
+    with pytest.raises(MeshRound.RoundingError, match="no radius control point lies on the chain picked at"):
+        MeshRound.round_edges(box, [BOX_SEED, BOX_OTHER_SEED], BACK_LAW)
