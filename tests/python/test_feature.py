@@ -1,5 +1,9 @@
-"""The parametric Rounding feature: recompute, chaining, expressions, save/reload, undo/redo, failures."""
+"""The parametric Rounding feature: recompute on any change, chaining, expressions, save/reload, undo/redo,
+failures (invalid feature, error on the console, document consistent), STEP export, stored proxy paths."""
 import os
+import re
+import subprocess
+import zipfile
 
 import pytest
 
@@ -7,7 +11,7 @@ import FreeCAD
 import Part
 
 import MeshRound
-from conftest import BOX_OTHER_SEED, BOX_RADIUS, BOX_SEED
+from conftest import BOX_OTHER_SEED, BOX_RADIUS, BOX_SEED, MOD_DIR
 
 import Spreadsheet  # noqa: F401,E402  (registers Spreadsheet::Sheet)
 
@@ -241,3 +245,104 @@ def test_surfaces_export_to_step(rounding, tmp_path):
     rounding.Surfaces.Shape.exportStep(path)
     assert os.path.getsize(path) > 0
     assert len(Part.read(path).Faces) == 1
+
+
+@pytest.mark.parametrize("name, value, changes_mesh", [
+    ("Seeds", [BOX_SEED, BOX_OTHER_SEED], True),
+    ("Radius", 6.0, True),
+    ("Tolerance", 0.01, True),
+    ("FeatureAngle", 60.0, False),  # the box's 90 deg edges stay sharp: same chain, same round
+    ("Reach", 2.0, False),
+    ("RadiusLaw", None, True),      # with RadiusLawRadii, below
+    ("Base", None, True),           # the base feature's mesh changes, below
+])
+def test_any_property_change_recomputes(doc, box_feature, rounding, name, value, changes_mesh):
+    before = rounding.Mesh.Topology
+    if name == "RadiusLaw":
+        rounding.RadiusLaw = [FreeCAD.Vector(0, 60, 40), FreeCAD.Vector(100, 60, 40)]
+        rounding.RadiusLawRadii = [3.0, 6.0]
+    elif name == "Base":  # another mesh feature: the box 10 mm higher (the seed still selects its edge)
+        moved = doc.addObject("Mesh::Feature", "Moved")
+        mesh = box_feature.Mesh.copy()
+        mesh.translate(0, 0, 10)
+        moved.Mesh = mesh
+        rounding.Base = moved
+    else:
+        setattr(rounding, name, value)
+    assert "Touched" in rounding.State
+    assert doc.recompute() >= 1
+    assert not is_invalid(rounding), rounding.getStatusString()
+    assert (rounding.Mesh.Topology != before) == changes_mesh
+    if name == "Base":
+        assert rounding.Mesh.BoundBox.ZMax == pytest.approx(50.0, abs=1e-4)
+
+
+def test_proxy_module_paths_stored_in_the_file(doc, rounding, tmp_path):
+    """.FCStd files name the proxy's module and class: these must never change once released."""
+    path = str(tmp_path / "paths.FCStd")
+    doc.saveAs(path)
+    with zipfile.ZipFile(path) as archive:
+        document = archive.read("Document.xml").decode()
+    proxies = set(re.findall(r'<Python [^>]*module="([^"]*)" class="([^"]*)"', document))
+    assert proxies == {("MeshRound.objects.rounding", "Rounding")}
+    assert MeshRound.objects.rounding.Rounding.__module__ == "MeshRound.objects.rounding"
+
+
+def test_surfaces_export_to_step_as_the_gui_does(rounding, tmp_path):
+    """File > Export of the RoundingSurfaces object (Import.export), read back as one B-spline face."""
+    import Import
+    path = str(tmp_path / "gui_export.step")
+    Import.export([rounding.Surfaces], path)
+    faces = Part.read(path).Faces
+    assert len(faces) == 1 and isinstance(faces[0].Surface, Part.BSplineSurface)
+    assert faces[0].Area == pytest.approx(rounding.Surfaces.Shape.Area, rel=1e-6)
+
+
+def test_a_failed_feature_undoes_saves_and_reloads_cleanly(doc, box_feature, rounding, tmp_path):
+    good = rounding.Mesh.Topology
+    doc.openTransaction("Bad radius")
+    rounding.Radius = 0.0
+    doc.recompute()
+    doc.commitTransaction()
+    assert is_invalid(rounding) and rounding.Mesh.Topology == good
+    doc.undo()
+    doc.recompute()
+    assert not is_invalid(rounding) and rounding.Radius.Value == BOX_RADIUS
+    doc.redo()
+    doc.recompute()
+    assert is_invalid(rounding) and rounding.Radius.Value == 0.0
+    path = str(tmp_path / "failed.FCStd")
+    doc.saveAs(path)
+    FreeCAD.closeDocument(doc.Name)
+    reopened = FreeCAD.openDocument(path)
+    try:
+        obj = reopened.getObject("Rounding")
+        assert obj.Radius.Value == 0.0 and obj.Mesh.Topology == good  # the last good mesh was saved
+        obj.Radius = 3.0
+        reopened.recompute()
+        assert not is_invalid(obj), obj.getStatusString()
+    finally:
+        FreeCAD.closeDocument(reopened.Name)
+
+
+def test_failure_is_reported_on_freecads_console(tmp_path):
+    """In freecadcmd (as in the GUI's report view) a failed recompute prints the RoundingError's message."""
+    home = tmp_path / "home"
+    (home / "Mod").mkdir(parents=True)
+    os.symlink(MOD_DIR, home / "Mod" / "MeshRound")
+    script = tmp_path / "fail.py"
+    script.write_text(
+        "import FreeCAD, MeshPart, Part, MeshRound\n"
+        "doc = FreeCAD.newDocument('Fail')\n"
+        "box = doc.addObject('Mesh::Feature', 'Box')\n"
+        "box.Mesh = MeshPart.meshFromShape(Shape=Part.makeBox(100, 60, 40), MaxLength=5.0)\n"
+        "rounding = MeshRound.make_rounding(box, FreeCAD.Vector(37, 60, 40), 5.0)\n"
+        "doc.recompute()\n"
+        "rounding.Seeds = [FreeCAD.Vector(50, 30, 20)]\n"
+        "doc.recompute()\n"
+        f"open({str(tmp_path / 'state.txt')!r}, 'w').write(' '.join(rounding.State))\n")
+    run = subprocess.run(["freecadcmd", str(script)], env=dict(os.environ, FREECAD_USER_HOME=str(home)),
+                         capture_output=True, text=True, timeout=120)
+    assert "Invalid" in (tmp_path / "state.txt").read_text()
+    console = run.stdout + run.stderr
+    assert "RoundingError" in console and "sharp edge" in console, console[-2000:]

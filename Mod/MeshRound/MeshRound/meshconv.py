@@ -17,6 +17,7 @@ import tempfile
 
 import numpy as np
 
+import FreeCAD  # noqa: F401  (first: importing Mesh before FreeCAD crashes a plain Python)
 import Mesh
 
 _PLY_POINT = np.dtype("<f4")
