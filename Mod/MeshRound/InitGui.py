@@ -20,9 +20,10 @@ class MeshRoundWorkbench(FreeCADGui.Workbench):
                                            "MeshRound.svg")
 
     def Initialize(self):
-        from MeshRound import commands
-        self.appendToolbar("MeshRound", commands.COMMANDS)
-        self.appendMenu("&MeshRound", commands.COMMANDS)
+        import MeshRoundGui  # registers the commands
+        names = list(MeshRoundGui.COMMANDS)
+        self.appendToolbar("MeshRound", names)
+        self.appendMenu("&MeshRound", names)
 
     def GetClassName(self):
         return "Gui::PythonWorkbench"

@@ -1,11 +1,9 @@
-"""GUI commands of the MeshRound workbench (imported by the workbench's Initialize)."""
+"""GUI commands of the MeshRound workbench: name -> command object in COMMANDS (registered with FreeCAD
+by MeshRoundGui.py, whose module name recorded macros import)."""
 import FreeCAD
 import FreeCADGui
 
 from .resources import icon_path
-
-COMMANDS = ["MeshRound_RoundEdges"]
-
 
 class RoundEdgesCommand:
     """Round sharp edges: opens the task panel on the selected (or only) mesh feature.
@@ -48,4 +46,5 @@ def _base_and_seeds():
     return (visible[0], []) if len(visible) == 1 else (None, [])
 
 
-FreeCADGui.addCommand("MeshRound_RoundEdges", RoundEdgesCommand())
+# name -> command, in toolbar and menu order
+COMMANDS = {"MeshRound_RoundEdges": RoundEdgesCommand()}

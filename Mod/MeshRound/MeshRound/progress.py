@@ -7,9 +7,10 @@
 busy() starts FreeCAD's progress indicator (Base.ProgressIndicator: in the GUI the status-bar progress
 bar, the status text and the wait cursor; nothing in a plain script).  wait_for() runs a function that
 releases the GIL (the compiled engine does) on a worker thread when the GUI is up inside a busy() block,
-and meanwhile steps the indicator every STEP_S: FreeCAD then processes events, so the window repaints, the
-bar appears after FreeCAD's own delay (2 s) and moves, and the indicator's event filter keeps the user
-from editing the document mid-run (clicks beep, Esc is ignored: the engine cannot be interrupted).
+and meanwhile, every STEP_S, steps the indicator and processes events: the window repaints, the bar
+appears after FreeCAD's own delay (2 s) and moves, and the indicator's event filter (installed by start)
+keeps the user from editing the document mid-run (clicks beep, keys are eaten; the engine cannot be
+interrupted).
 Only the function runs on the worker; everything touching FreeCAD objects stays on the calling thread.
 Outside busy(), without the GUI, or when already waiting, the function is simply called.
 """
@@ -50,6 +51,7 @@ def wait_for(function, *args, **kwargs):
         except BaseException as exc:  # handed to the caller's thread below
             outcome["error"] = exc
 
+    import FreeCADGui
     worker = threading.Thread(target=work, name="MeshRound engine", daemon=True)
     _state.waiting = True
     try:
@@ -58,7 +60,8 @@ def wait_for(function, *args, **kwargs):
             worker.join(STEP_S)  # releases the GIL: the worker's Python parts run meanwhile
             if not worker.is_alive():
                 break
-            indicator.next()     # lets FreeCAD process events and advance the bar
+            indicator.next()     # advances the bar (FreeCAD processes events only twice a second there)
+            FreeCADGui.updateGui()  # so process them here: the window repaints, the bar shows
     finally:
         _state.waiting = False
     if "error" in outcome:

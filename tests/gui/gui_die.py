@@ -1,0 +1,89 @@
+"""The S-rail die part of the GUI macro: the progress indicator, and the live preview's speed on a die of
+147k facets (picking a shoulder, previews at several radii as a user types them, OK)."""
+import statistics
+import time
+
+import FreeCAD
+import FreeCADGui
+
+from gui_support import StatusSampler, press_task_button, redraw_seconds, screenshot, step, wait_until
+
+PREVIEW_RADII = (5.5, 6.0, 4.5, 4.0, 5.0)  # as typed, one after another (5 is the default)
+
+
+def run():
+    check_progress_indicator()
+    preview_on_the_die()
+
+
+def check_progress_indicator():
+    """A long engine call (here a stand-in that sleeps 2.7 s, releasing the GIL as the engine does) runs
+    under FreeCAD's progress indicator: status text, the progress bar after FreeCAD's 2 s delay, and a
+    window that keeps processing events."""
+    from MeshRound import progress
+    sampler = StatusSampler()
+    started = time.perf_counter()
+    with progress.busy("Rounding edges of a long chain"):
+        progress.wait_for(time.sleep, 2.7)
+    seconds = time.perf_counter() - started
+    sampler.stop()
+    step("progress", {"seconds": seconds, "samples": len(sampler.samples), "messages": sampler.messages(),
+                      "bar_seen": sampler.bar_seen(),
+                      "bar_after": any(b.isVisible() for b in sampler._bars)})
+
+
+def preview_on_the_die():
+    import die_meshes
+    from MeshRound import meshconv
+    from MeshRound.taskpanels.round_edges import active_panel
+
+    vertices, triangles, seeds = die_meshes.die_arrays(4)
+    doc = FreeCAD.newDocument("DieTest")
+    die = doc.addObject("Mesh::Feature", "Die")
+    die.Mesh = meshconv.arrays_to_mesh(vertices, triangles)
+    doc.recompute()
+    view = FreeCADGui.ActiveDocument.ActiveView
+    view.viewIsometric()
+    view.fitAll()
+    frame_of_die = redraw_seconds(view)
+
+    FreeCADGui.Selection.addSelection(doc.Name, die.Name)
+    started = time.perf_counter()
+    FreeCADGui.runCommand("MeshRound_RoundEdges")
+    panel_open = time.perf_counter() - started
+    panel = active_panel()
+    redraw_seconds(view)  # the first frame with the ghosted die
+
+    started = time.perf_counter()
+    panel.add_seed(seeds[0])
+    pick = time.perf_counter() - started
+    pick_frame = redraw_seconds(view)
+
+    previews = []
+    sampler = StatusSampler()
+    for radius in PREVIEW_RADII:
+        panel.result, panel.error = None, None
+        started = time.perf_counter()
+        panel.set_radius(radius)  # as typed: the debounced live preview follows
+        latency = wait_until(lambda: panel.result is not None or panel.error is not None)
+        report = panel.result.report if panel.result else {}
+        previews.append({"radius": radius, "latency_s": latency, "frame_s": redraw_seconds(view),
+                         "engine_s": report.get("seconds_total"), "round_arrays_s": report.get("seconds"),
+                         "facets_added": report.get("facets_added"), "error": panel.error})
+    sampler.stop()
+    screenshot("gui_die_preview.png")
+    latencies = [p["latency_s"] for p in previews if p["latency_s"] is not None and not p["error"]]
+
+    sampler_ok = StatusSampler()
+    started = time.perf_counter()
+    press_task_button("ok")
+    ok_seconds = time.perf_counter() - started
+    sampler_ok.stop()
+    rounding = next((o for o in doc.Objects if o.TypeId == "Mesh::FeaturePython"), None)
+    step("die", {
+        "facets": die.Mesh.CountFacets, "frame_of_die_s": frame_of_die, "panel_open_s": panel_open,
+        "pick_s": pick, "pick_frame_s": pick_frame, "chains": len(panel.chain_wires),
+        "previews": previews, "median_latency_s": statistics.median(latencies) if latencies else None,
+        "preview_messages": sampler.messages(), "ok_s": ok_seconds, "ok_messages": sampler_ok.messages(),
+        "rounding_state": rounding.State if rounding else None,
+        "rounding_statistics": dict(rounding.Statistics) if rounding else None})
