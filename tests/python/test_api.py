@@ -277,7 +277,8 @@ def run_python(code, *, cwd):
     """Run code in a fresh /usr/bin/python3; (stdout, stderr), failing the test on a non-zero exit."""
     run = subprocess.run(["/usr/bin/python3", "-c", code], cwd=cwd, capture_output=True, text=True,
                          timeout=120)
-    assert run.returncode == 0, f"exit {run.returncode}\nstdout:\n{run.stdout[-2000:]}\nstderr:\n{run.stderr[-2000:]}"
+    assert run.returncode == 0, (f"exit {run.returncode}\nstdout:\n{run.stdout[-2000:]}"
+                                 f"\nstderr:\n{run.stderr[-2000:]}")
     return run.stdout, run.stderr
 
 

@@ -346,3 +346,58 @@ def test_failure_is_reported_on_freecads_console(tmp_path):
     assert "Invalid" in (tmp_path / "state.txt").read_text()
     console = run.stdout + run.stderr
     assert "RoundingError" in console and "sharp edge" in console, console[-2000:]
+
+
+# ----------------------------------------------------------------------------- the workbench's package layout
+GUI_MODULES = {"InitGui.py", "MeshRoundGui.py", "MeshRound/commands.py"}
+GUI_FOLDERS = ("MeshRound/viewproviders/", "MeshRound/taskpanels/")
+
+
+def package_files():
+    for folder, _, files in os.walk(MOD_DIR):
+        for name in files:
+            if name.endswith(".py"):
+                path = os.path.join(folder, name)
+                yield os.path.relpath(path, MOD_DIR), path
+
+
+def test_freecadgui_is_imported_only_by_gui_modules_or_when_the_gui_is_up():
+    """Objects, API, CLI: no FreeCADGui at import time; GUI code lives in its own modules, which are
+    imported only when FreeCAD.GuiUp (or from code that runs only in the GUI)."""
+    import ast
+    for relative, path in package_files():
+        with open(path) as stream:
+            tree = ast.parse(stream.read())
+        top_level = [node for node in tree.body if isinstance(node, (ast.Import, ast.ImportFrom))]
+        names = [alias.name for node in top_level for alias in node.names]
+        names += [node.module or "" for node in top_level if isinstance(node, ast.ImportFrom)]
+        imports_gui = any(name.split(".")[0] in ("FreeCADGui", "PySide", "PySide2", "pivy") for name in names)
+        if imports_gui:
+            assert relative in GUI_MODULES or relative.startswith(GUI_FOLDERS), relative
+
+
+def test_layout_follows_freecads_conventions():
+    import xml.etree.ElementTree as ElementTree
+    for name in ("Init.py", "InitGui.py", "package.xml", "Resources/icons/MeshRound.svg",
+                 "Resources/icons/MeshRound_RoundEdges.svg", "MeshRound/objects/rounding.py",
+                 "MeshRound/viewproviders/rounding.py", "MeshRound/taskpanels/round_edges.py",
+                 "MeshRound/commands.py"):
+        assert os.path.isfile(os.path.join(MOD_DIR, name)), name
+    ns = {"p": "https://wiki.freecad.org/Package_Metadata"}
+    package = ElementTree.parse(os.path.join(MOD_DIR, "package.xml")).getroot()
+    workbench = package.find("p:content/p:workbench", ns)
+    assert workbench.find("p:classname", ns).text == "MeshRoundWorkbench"
+    assert os.path.isfile(os.path.join(MOD_DIR, workbench.find("p:icon", ns).text))
+    assert package.find("p:version", ns).text == MeshRound.__version__
+    with open(os.path.join(MOD_DIR, "InitGui.py")) as stream:
+        assert "class MeshRoundWorkbench(" in stream.read()
+    for _, path in package_files():
+        with open(path) as stream:
+            assert sum(1 for _ in stream) <= 600, path
+
+
+def test_the_gui_registration_does_nothing_headless():
+    """MeshRoundGui is imported by recorded macros: replayed in freecadcmd it must not fail."""
+    import importlib
+    module = importlib.import_module("MeshRoundGui")
+    assert not hasattr(module, "COMMANDS")

@@ -4,10 +4,10 @@
     res = MeshRound.round_edges(mesh, seeds, radius, tolerance=None, feature_angle=30.0, reach=3.0)
     res.mesh, res.surfaces, res.spines, res.chains, res.contacts, res.report
 
-Only this module calls the compiled engine (errors.py imports it for its exception class).  It validates in Python first (so every bad input is
-a RoundingError with a clear message), converts the mesh to arrays once, calls the engine, and turns its
-plain outputs into FreeCAD objects.  The *_arrays variants skip the mesh conversion for callers that keep
-the arrays (the task panel traces a chain on every pick).
+Only this module calls the compiled engine (errors.py imports it for its exception class).  It validates
+in Python first (so every bad input is a RoundingError with a clear message), converts the mesh to arrays
+once, calls the engine, and turns its plain outputs into FreeCAD objects.  The *_arrays variants skip the
+mesh conversion for callers that keep the arrays (the task panel traces a chain on every pick).
 """
 import dataclasses
 import functools
