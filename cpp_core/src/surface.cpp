@@ -21,7 +21,7 @@ gp_Pnt to_pnt(const Vec3& p) { return gp_Pnt(p.x(), p.y(), p.z()); }
 Vec3 to_vec(const gp_XYZ& p) { return Vec3(p.X(), p.Y(), p.Z()); }
 
 // Cubic interpolation of one sequence of points at the given parameters.
-Handle(Geom_BSplineCurve) interpolate(const std::vector<Vec3>& pts, const std::vector<double>& params, bool periodic) {
+Handle(Geom_BSplineCurve) interpolate_raw(const std::vector<Vec3>& pts, const std::vector<double>& params, bool periodic) {
   // A periodic interpolation takes one parameter more than points: the junction's (params has it).
   const int n = int(pts.size());
   Handle(TColgp_HArray1OfPnt) P = new TColgp_HArray1OfPnt(1, n);
@@ -32,6 +32,19 @@ Handle(Geom_BSplineCurve) interpolate(const std::vector<Vec3>& pts, const std::v
   interp.Perform();
   if (!interp.IsDone()) throw RoundingError("the rounding surface could not be lofted through its profiles");
   return interp.Curve();
+}
+
+// Interpolation through points that may repeat (a contact that stays on a mesh vertex while the ball
+// rolls on): OCCT refuses coincident neighbours, but with the parameters given the interpolation is
+// linear in the points, so the points are lifted apart by s along x and the lift's own interpolation
+// is taken off the poles again.
+Handle(Geom_BSplineCurve) interpolate(const std::vector<Vec3>& pts, const std::vector<double>& params, bool periodic) {
+  std::vector<Vec3> lifted(pts), lift(pts.size(), Vec3::Zero());
+  for (size_t i = 0; i < pts.size(); ++i) lift[i].x() = params[i] - params[0], lifted[i] += lift[i];
+  Handle(Geom_BSplineCurve) c = interpolate_raw(lifted, params, periodic), l = interpolate_raw(lift, params, periodic);
+  if (c->NbPoles() != l->NbPoles()) throw RoundingError("inconsistent profile lofts");
+  for (int i = 1; i <= c->NbPoles(); ++i) c->SetPole(i, gp_Pnt(c->Pole(i).XYZ() - l->Pole(i).XYZ()));
+  return c;
 }
 
 }  // namespace

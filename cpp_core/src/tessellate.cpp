@@ -33,15 +33,22 @@ double v_at_angle_fraction(const RoundingSurface& s, const ProfileStation& st, d
 // surface's parametrisation need not be uniform, so S(u, v) itself may lie beside p along the surface.
 double distance_to_surface(const RoundingSurface& s, const Vec3& p, double u, double v) {
   Vec3 q, su, sv;
-  for (int it = 0; it < 4; ++it) {
+  double best = (s.value(u, v) - p).norm();
+  for (int it = 0; it < 6 && best > 0; ++it) {
     s.d1(u, v, q, su, sv);
     Eigen::Matrix2d JtJ;
     JtJ << su.dot(su), su.dot(sv), su.dot(sv), sv.dot(sv);
-    const Eigen::Vector2d step = JtJ.ldlt().solve(Eigen::Vector2d(su.dot(p - q), sv.dot(p - q)));
+    Eigen::Vector2d step = JtJ.ldlt().solve(Eigen::Vector2d(su.dot(p - q), sv.dot(p - q)));
     if (!step.allFinite()) break;
-    u += step(0), v = std::clamp(v + step(1), 0.0, 1.0);
+    // Damped: a step is taken only when it brings the surface point nearer (halved until it does).
+    bool improved = false;
+    for (int half = 0; half < 6 && !improved; ++half, step *= 0.5) {
+      const double u2 = u + step(0), v2 = std::clamp(v + step(1), 0.0, 1.0), d = (s.value(u2, v2) - p).norm();
+      if (d < best) best = d, u = u2, v = v2, improved = true;
+    }
+    if (!improved) break;
   }
-  return (s.value(u, v) - p).norm();
+  return best;
 }
 
 }  // namespace
@@ -84,6 +91,10 @@ RoundMeshStats mesh_rounding_surface(const RoundingSurface& surface, const std::
       fprintf(stderr, "row %d:", side);
       for (const RowPoint& p : side ? last_row : first_row) fprintf(stderr, " %d@%.4f", p.id, p.u);
       fprintf(stderr, "\n");
+      for (const RowPoint& p : side ? last_row : first_row) {
+        const double d = (surface.value(p.u, side) - edit.point(p.id)).norm();
+        if (d > 0.2 * tolerance) fprintf(stderr, "  trim point %d u %.4f off the surface edge by %g\n", p.id, p.u, d);
+      }
     }
   }
   // u samples of the inner rows: both trim lines merged, thinned, gaps filled.
@@ -163,6 +174,9 @@ RoundMeshStats mesh_rounding_surface(const RoundingSurface& surface, const std::
         worst = std::max(worst, distance_to_surface(surface, p, u, v));
       }
       stats.max_deviation = std::max(stats.max_deviation, worst);
+      if (worst > 0.9 * tolerance && getenv("MESHROUND_DEBUG") && round == 0)
+        fprintf(stderr, "  bad %g: u %.4f %.4f %.4f v %.3f %.3f %.3f ids %d %d %d\n", worst, tri[0].u, tri[1].u, tri[2].u,
+                tri[0].v, tri[1].v, tri[2].v, tri[0].id, tri[1].id, tri[2].id);
       if (worst > 0.9 * tolerance)
         bad.push_back({std::min({tri[0].u, tri[1].u, tri[2].u}), std::max({tri[0].u, tri[1].u, tri[2].u})});
     }

@@ -36,13 +36,12 @@ ROWS = {}
 # Known engine faults, one line per (property, case, mesh): expected to fail, and strict, so that a fix
 # turns the line into a failure until it is struck from this list.
 KNOWN_FAULTS = {
-    "deviation": {("pocket_rim", "coarse"), ("s_chain", "coarse")},
-    "topology": {("pocket_rim", "coarse"), ("s_chain", "coarse"), ("s_chain_var3", "coarse")},
-    "locality": {("pocket_rim", "coarse")},
-    "smoothness": {("pocket_rim", "coarse"), ("s_chain", "coarse"), ("s_chain_var3", "fine"),
-                   ("s_chain_var3", "coarse")},
+    "deviation": {("s_chain", "coarse")},
+    "topology": {("s_chain", "coarse"), ("s_chain_var3", "coarse")},
+    "locality": set(),
+    "smoothness": {("s_chain", "coarse"), ("s_chain_var3", "coarse")},
     "quality": {("box", "coarse"), ("box", "cad"), ("lchannel", "cad"), ("draft_shoulder", "cad"),
-                ("pocket_rim", "coarse"), ("box_var", "coarse"), ("box_var", "cad"), ("lchannel_var", "cad")},
+                ("box_var", "coarse"), ("box_var", "cad"), ("lchannel_var", "cad")},
 }
 
 
