@@ -6,8 +6,8 @@ Writes under out_dir:
   srail_die.stl                         the sharp die mesh (the input, a CAE tool mesh)
   srail_rounded_constant.{stl,obj}      both shoulders rounded, r = CONSTANT_RADIUS
   srail_rounded_variable.{stl,obj}      both shoulders rounded, r varying along each shoulder (LAW)
-  srail_rounding.FCStd                  the die mesh with the two parametric Rounding features
-  srail_report.json                     the engine's report per rounding (one entry per chain inside)
+  srail_rounding.FCStd                  the die mesh and two parametric Rounding features of it
+  srail_report.json                     the engine's report of each rounding (per_chain: one per shoulder)
   srail_before_after.png                rendered by FreeCAD's GUI (resources/srail_render.py, under xvfb)
 """
 import json
@@ -57,7 +57,7 @@ def _chain_through(edges, seed):
 
 def radius_laws(law=LAW, inset=1.0):
     """Per shoulder, [(FreeCAD.Vector, r)]: the law's control points placed along it by arc length.
-    (The engine wants every control point of a call near every chain it rounds: one law per shoulder.)"""
+    (In one call on both shoulders, each control point belongs to the shoulder nearest to it.)"""
     laws = []
     for line in shoulder_polylines():
         s = np.concatenate([[0.0], np.cumsum(np.linalg.norm(np.diff(line, axis=0), axis=1))])
@@ -80,32 +80,22 @@ def _describe(radius):
     return "variable r = " + " -> ".join(f"{r:g}" for _, r in radius) + " mm"
 
 
-def round_checked(mesh, seeds, radius, which):
-    """MeshRound.round_edges; a RoundingError becomes a DemoError naming the shoulder(s) and the radius
-    (when a call on both shoulders fails, each is tried alone to say which one the engine refuses)."""
+def round_checked(mesh, seeds, radius, alone):
+    """MeshRound.round_edges on both shoulders; a RoundingError becomes a DemoError naming the shoulder
+    and its radius: each shoulder is then tried alone (with alone[i], its own radius) to say which one
+    the engine refuses."""
     try:
         return MeshRound.round_edges(mesh, seeds, radius)
     except MeshRound.RoundingError as exc:
-        failing = [(SHOULDERS[i], exc)] if len(which) == 1 else []
-        if len(which) > 1:
-            for i, seed in zip(which, seeds):
-                try:
-                    MeshRound.round_edges(mesh, [seed], radius)
-                except MeshRound.RoundingError as alone:
-                    failing.append((SHOULDERS[i], alone))
-        lines = [f"{name}, {_describe(radius)}: {err}" for name, err in failing] or \
-                [f"both shoulders together (each alone works), {_describe(radius)}: {exc}"]
-        raise DemoError("the engine refused the demo rounding:\n  " + "\n  ".join(lines)) from exc
-
-
-def round_variable(mesh, seeds, laws):
-    """Each shoulder with its own law, one after the other; the reports of both."""
-    reports = []
-    for i, (seed, law) in enumerate(zip(seeds, laws)):
-        res = round_checked(mesh, [seed], law, [i])
-        mesh = res.mesh
-        reports.append(res.report)
-    return mesh, reports
+        failing = []
+        for name, seed, own in zip(SHOULDERS, seeds, alone):
+            try:
+                MeshRound.round_edges(mesh, [seed], own)
+            except MeshRound.RoundingError as error:
+                failing.append(f"{name}, {_describe(own)}: {error}")
+        if not failing:
+            failing = [f"both shoulders in one call (each alone works), {_describe(alone[0])}: {exc}"]
+        raise DemoError("the engine refused the demo rounding:\n  " + "\n  ".join(failing)) from exc
 
 
 def write_meshes(out_dir, name, mesh):
@@ -113,18 +103,16 @@ def write_meshes(out_dir, name, mesh):
         mesh.write(os.path.join(out_dir, f"{name}.{ext}"))
 
 
-def write_document(out_dir, mesh, seeds, laws):
-    """An FCStd with the die mesh and the parametric Rounding features (recomputed): RoundingConstant
-    (both shoulders), and RoundingVariable on top of RoundingVariableFirst (one shoulder each)."""
+def write_document(out_dir, mesh, seeds, law):
+    """An FCStd with the die mesh and two parametric Rounding features of it, recomputed:
+    RoundingConstant and RoundingVariable, each of both shoulders."""
     path = os.path.join(out_dir, "srail_rounding.FCStd")
     doc = FreeCAD.newDocument("SRailDie")
     try:
         base = doc.addObject("Mesh::Feature", "DieMesh")
         base.Mesh = mesh
         MeshRound.make_rounding(base, seeds, CONSTANT_RADIUS, name="RoundingConstant", doc=doc)
-        first = MeshRound.make_rounding(base, seeds[:1], laws[0], name="RoundingVariableFirst", doc=doc)
-        doc.recompute()  # a Rounding's base must have its mesh before it can be rounded again
-        MeshRound.make_rounding(first, seeds[1:], laws[1], name="RoundingVariable", doc=doc)
+        MeshRound.make_rounding(base, seeds, law, name="RoundingVariable", doc=doc)
         doc.recompute()
         broken = [o.Name for o in doc.Objects if "Invalid" in o.State or "Error" in o.State]
         if broken:
@@ -161,20 +149,20 @@ def main(out_dir="out"):
     mesh.write(os.path.join(out_dir, "srail_die.stl"))
     seeds = srail_die.shoulder_seeds()
     laws = radius_laws()
-    constant = round_checked(mesh, seeds, CONSTANT_RADIUS, [0, 1])
-    variable, variable_reports = round_variable(mesh, seeds, laws)
+    law = laws[0] + laws[1]  # one call: each control point goes to the shoulder nearest to it
+    constant = round_checked(mesh, seeds, CONSTANT_RADIUS, [CONSTANT_RADIUS] * 2)
+    variable = round_checked(mesh, seeds, law, laws)
     write_meshes(out_dir, "srail_rounded_constant", constant.mesh)
-    write_meshes(out_dir, "srail_rounded_variable", variable)
+    write_meshes(out_dir, "srail_rounded_variable", variable.mesh)
     report = dict(element_size=ELEMENT_SIZE, facets_in=mesh.CountFacets,
                   constant=dict(radius=CONSTANT_RADIUS, report=constant.report),
-                  variable=[dict(law=[dict(point=list(p), radius=r) for p, r in law], report=rep)
-                            for law, rep in zip(laws, variable_reports)])
+                  variable=dict(law=[[dict(point=list(p), radius=r) for p, r in shoulder] for shoulder in laws],
+                                report=variable.report))
     with open(os.path.join(out_dir, "srail_report.json"), "w") as f:
         json.dump(report, f, indent=1)
-    write_document(out_dir, mesh, seeds, laws)
-    png = render(out_dir)
-    for name, r in [("constant", constant.report)] + [(f"variable, shoulder {i + 1}", r)
-                                                       for i, r in enumerate(variable_reports)]:
+    write_document(out_dir, mesh, seeds, law)
+    render(out_dir)
+    for name, r in (("constant r = 5 mm", constant.report), ("variable r = 3 -> 8 -> 3 mm", variable.report)):
         print(f"{name}: {r.get('chains')} chain(s), {r.get('facets_in')} -> {r.get('facets_out')} facets, "
               f"max deviation {r.get('max_deviation'):.4f} mm, {r.get('seconds', 0):.2f} s")
     print(f"wrote {os.path.abspath(out_dir)}:")

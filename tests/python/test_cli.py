@@ -179,8 +179,8 @@ def test_demo_runs(tmp_path):
     assert sorted(os.listdir(out)) == sorted(names)
     report = json.loads((out / "srail_report.json").read_text())
     assert report["constant"]["report"]["chains"] == 2
-    assert [v["report"]["chains"] for v in report["variable"]] == [1, 1]
-    assert len(report["constant"]["report"]["per_chain"]) == 2
+    assert report["variable"]["report"]["chains"] == 2
+    assert len(report["constant"]["report"]["per_chain"]) == len(report["variable"]["report"]["per_chain"]) == 2
     rounded = Mesh.Mesh(str(out / "srail_rounded_constant.stl"))
     assert rounded.CountFacets > report["facets_in"] and rounded.isSolid()
     assert (out / "srail_before_after.png").read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"

@@ -104,7 +104,8 @@ def build_parser():
     radius = rnd.add_mutually_exclusive_group(required=True)
     radius.add_argument("--radius", metavar="R", type=positive, help="constant radius (mm)")
     radius.add_argument("--radius-at", metavar="X,Y,Z:R", type=control_point, action="append",
-                        help="variable radius: radius R at the chain point nearest X,Y,Z (repeatable)")
+                        help="variable radius: radius R at the chain point nearest X,Y,Z (repeatable; with "
+                             "several chains each point belongs to the chain nearest to it)")
     rnd.add_argument("--tolerance", metavar="T", type=non_negative, default=None,
                      help="chordal tolerance (mm); default: largest radius / 100")
     rnd.add_argument("--feature-angle", metavar="A", type=angle, default=30.0,
