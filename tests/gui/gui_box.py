@@ -60,6 +60,7 @@ def run(work_dir):
     step("error_text", panel.form.status.text())
     step("error_style", panel.form.status.styleSheet())
     panel.set_radius(4.0)
+    step("radius_text", panel.form.radius.text())  # a field with units
     panel.form.tolerance.setProperty("rawValue", 0.05)  # the tolerance field
     result = panel.preview_now()
     step("preview_report", result.report if result else None)
@@ -120,6 +121,9 @@ def run(work_dir):
     redraw_seconds(view)
     step("failed", {"state": rounding.State, "report_view": report_view_text()[-3000:],
                     "base_state": box.State})
+    rounding.ViewObject.Proxy.doubleClicked(rounding.ViewObject)  # the panel of a failed feature says why
+    step("failed_edit_status", active_panel().form.status.text())
+    press_task_button("cancel")
     rounding.Radius = 4.0
     doc.recompute()
 

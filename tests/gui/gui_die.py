@@ -29,7 +29,7 @@ def check_progress_indicator():
     sampler.stop()
     step("progress", {"seconds": seconds, "samples": len(sampler.samples), "messages": sampler.messages(),
                       "bar_seen": sampler.bar_seen(),
-                      "bar_after": any(b.isVisible() for b in sampler._bars)})
+                      "bar_after": sampler.bar_visible()})
 
 
 def preview_on_the_die():
@@ -60,7 +60,6 @@ def preview_on_the_die():
     pick_frame = redraw_seconds(view)
 
     previews = []
-    sampler = StatusSampler()
     for radius in PREVIEW_RADII:
         panel.result, panel.error = None, None
         started = time.perf_counter()
@@ -70,7 +69,6 @@ def preview_on_the_die():
         previews.append({"radius": radius, "latency_s": latency, "frame_s": redraw_seconds(view),
                          "engine_s": report.get("seconds_total"), "round_arrays_s": report.get("seconds"),
                          "facets_added": report.get("facets_added"), "error": panel.error})
-    sampler.stop()
     screenshot("gui_die_preview.png")
     latencies = [p["latency_s"] for p in previews if p["latency_s"] is not None and not p["error"]]
 
@@ -84,6 +82,7 @@ def preview_on_the_die():
         "facets": die.Mesh.CountFacets, "frame_of_die_s": frame_of_die, "panel_open_s": panel_open,
         "pick_s": pick, "pick_frame_s": pick_frame, "chains": len(panel.chain_wires),
         "previews": previews, "median_latency_s": statistics.median(latencies) if latencies else None,
-        "preview_messages": sampler.messages(), "ok_s": ok_seconds, "ok_messages": sampler_ok.messages(),
+        "ok_s": ok_seconds, "ok_messages": sampler_ok.messages(),
+        "ok_samples": len(sampler_ok.samples),
         "rounding_state": rounding.State if rounding else None,
         "rounding_statistics": dict(rounding.Statistics) if rounding else None})

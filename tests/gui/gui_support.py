@@ -131,6 +131,9 @@ class StatusSampler:
     def bar_seen(self):
         return any(visible for _, visible in self.samples)
 
+    def bar_visible(self):
+        return any(b.isVisible() for b in self._bars)
+
 
 def report_view_text():
     """The text of FreeCAD's Report view (where console messages and recompute errors go)."""

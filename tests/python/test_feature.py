@@ -401,3 +401,23 @@ def test_the_gui_registration_does_nothing_headless():
     import importlib
     module = importlib.import_module("MeshRoundGui")
     assert not hasattr(module, "COMMANDS")
+
+
+def test_files_with_the_old_radius_law_property_name_load(doc, rounding, tmp_path):
+    rounding.removeProperty("RadiusLaw")
+    rounding.addProperty("App::PropertyVectorList", "RadiusLawPoints", "Rounding")
+    rounding.RadiusLawPoints = [FreeCAD.Vector(0, 60, 40), FreeCAD.Vector(100, 60, 40)]
+    rounding.RadiusLawRadii = [3.0, 6.0]
+    path = str(tmp_path / "old_law.FCStd")
+    doc.saveAs(path)
+    FreeCAD.closeDocument(doc.Name)
+    reopened = FreeCAD.openDocument(path)
+    try:
+        obj = reopened.getObject("Rounding")
+        assert "RadiusLawPoints" not in obj.PropertiesList
+        assert [tuple(p) for p in obj.RadiusLaw] == [(0, 60, 40), (100, 60, 40)]
+        obj.touch()
+        reopened.recompute()
+        assert not is_invalid(obj), obj.getStatusString()
+    finally:
+        FreeCAD.closeDocument(reopened.Name)

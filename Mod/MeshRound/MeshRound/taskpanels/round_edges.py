@@ -9,15 +9,15 @@ base mesh is only shown ghosted (restored on close).  OK runs FreeCADGui.doComma
 them) inside one undo transaction: MeshRound.make_rounding for a new feature, property assignments when
 editing one (double click on a Rounding).
 """
+import contextlib
 import weakref
 
 import FreeCAD
 import FreeCADGui
-from PySide import QtCore
+from PySide import QtCore, QtGui
 
 from .. import api, meshconv, shapes
 from ..errors import RoundingError
-from ..progress import busy
 from . import overlays
 from .round_edges_form import PICK_LAW_POINT, RoundEdgesForm, quantity_value
 
@@ -46,7 +46,6 @@ class RoundEdgesPanel:
         self.seeds = [FreeCAD.Vector(p) for p in values["seeds"]]
         self.law = list(values["law"])
         self.chain_wires, self.result, self.error = [], None, None
-        self._computing = False
 
         self.form = RoundEdgesForm(values["radius"], values["tolerance"], values["feature_angle"],
                                    values["reach"])
@@ -70,6 +69,8 @@ class RoundEdgesPanel:
         for seed in seeds:
             self.add_seed(seed)
         self._seeds_changed()
+        if feature is not None and "Invalid" in feature.State:  # until the preview says more
+            self._show_error(f"{feature.Label} failed to recompute: {feature.getStatusString()}")
 
     # ------------------------------------------------------------------ picking (mouse or script)
     def handle_pick(self, point):
@@ -150,24 +151,18 @@ class RoundEdgesPanel:
         return p, final
 
     def update_preview(self):
-        if self._computing:  # called again while the engine runs (FreeCAD processes events meanwhile)
-            self._timer.start()
-            return
         self.result = None
         self._preview.clear()
         if not self.seeds:
             self.form.show_status("Click near a sharp edge of the mesh to select it.")
             return
-        self._computing = True
         try:
             parameters, final_tolerance = self.preview_parameters()
-            with busy("Previewing rounding"):
+            with _wait_cursor():  # no progress indicator: its event filter would eat the keys typed meanwhile
                 self.result = api.round_arrays(self.vertices, self.triangles, **parameters)
         except (RoundingError, ValueError) as exc:
             self._show_error(str(exc))
             return
-        finally:
-            self._computing = False
         contacts = [shapes.wire_points(w) for w in self.result.contacts]
         self._preview.show(overlays.mesh_node(self.result.vertices, self.result.triangles),
                            overlays.polylines_node(contacts, overlays.CONTACT_COLOR, width=2.0))
@@ -212,7 +207,6 @@ class RoundEdgesPanel:
         return True
 
     def getStandardButtons(self):
-        from PySide import QtGui
         return int(QtGui.QDialogButtonBox.Ok | QtGui.QDialogButtonBox.Cancel)
 
     def _create_commands(self):
@@ -368,6 +362,15 @@ class _PickObserver:
         panel.handle_pick(FreeCAD.Vector(*point))
         # keep the base unselected: the view stays readable and the next click is a new selection
         QtCore.QTimer.singleShot(0, FreeCADGui.Selection.clearSelection)
+
+
+@contextlib.contextmanager
+def _wait_cursor():
+    QtGui.QApplication.setOverrideCursor(QtCore.Qt.WaitCursor)
+    try:
+        yield
+    finally:
+        QtGui.QApplication.restoreOverrideCursor()
 
 
 def _apply_view_state(saved):
