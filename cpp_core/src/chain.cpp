@@ -319,6 +319,9 @@ BaseMeshes collect_base_meshes(const MeshTopology& mesh, const SharpChain& chain
         const std::uint64_t key = edge_key(a, b);
         if (chain_edges.count(key)) continue;
         const int g = mesh.neighbour(f, a, b);
+        if (g >= 0 && mesh.facet_degenerate(g))
+          throw RoundingError("facet " + std::to_string(g) + " at " + format_point(mesh.corner(g, 0)) +
+                              " near the chain is degenerate (no area); repair the mesh there first");
         if (g < 0 || mesh.is_feature_edge(a, b, feature_angle_deg)) {
           base.walls[side].insert(key);
           continue;

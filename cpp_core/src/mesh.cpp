@@ -85,6 +85,14 @@ Vec3 MeshTopology::facet_normal(int f) const {
   return l > 0 ? Vec3(n / l) : Vec3::Zero();
 }
 
+bool MeshTopology::facet_degenerate(int f) const {
+  const int a = F(f, 0), b = F(f, 1), c = F(f, 2);
+  if (a == b || b == c || a == c) return true;
+  const Vec3 pa = point(a), pb = point(b), pc = point(c);
+  const double longest = std::max({(pb - pa).norm(), (pc - pb).norm(), (pa - pc).norm()});
+  return (pb - pa).cross(pc - pa).norm() <= 1e-12 * longest * longest;
+}
+
 namespace {
 
 double smallest_angle(const Vec3& a, const Vec3& b, const Vec3& c) {

@@ -84,6 +84,17 @@ std::vector<ProfileStation> sample_profiles(const SpineContext& ctx, const Radiu
   return st;
 }
 
+// The rounding rebuilds the base meshes, so they must be 2-manifold: refuse (naming the place) an edge
+// shared by more than two facets. (Degenerate facets are refused while the base meshes are collected.)
+void check_base_meshes(const MeshTopology& mesh, const BaseMeshes& base) {
+  for (int side = 0; side < 2; ++side)
+    for (int f : base.facets[side])
+      for (int k = 0; k < 3; ++k)
+        if (mesh.edge_facets(mesh.F(f, k), mesh.F(f, (k + 1) % 3)).size() > 2)
+          throw RoundingError("the edge at " + format_point(0.5 * (mesh.corner(f, k) + mesh.corner(f, (k + 1) % 3))) +
+                              " near the chain is non-manifold (more than two facets share it); repair the mesh there first");
+}
+
 double smallest_angle_deg(const Vec3& a, const Vec3& b, const Vec3& c) {
   auto ang = [](const Vec3& p, const Vec3& q, const Vec3& r) {
     const Vec3 u = q - p, v = r - p;
@@ -102,6 +113,7 @@ RoundedChain round_one_chain(const MeshTopology& mesh, const Vec3& seed, const R
   const RadiusLaw law(opt, chain, opt.reach * r_max);
   const double reach = opt.reach * law.max_radius();
   const BaseMeshes base = collect_base_meshes(mesh, chain, reach, opt.feature_angle_deg);
+  check_base_meshes(mesh, base);
   timer.done("chain");
 
   const double tol = opt.tolerance > 0 ? opt.tolerance : law.max_radius() / 100.0;

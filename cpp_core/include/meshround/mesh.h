@@ -41,6 +41,8 @@ class MeshTopology {
   std::vector<int> vertex_neighbours(int v) const;
 
   Vec3 facet_normal(int f) const;  // unit normal (zero for a degenerate facet)
+  // A repeated vertex or (numerically) no area.
+  bool facet_degenerate(int f) const;
   bool facet_has_edge(int f, int a, int b) const;
   // +1 when facet f runs a -> b, -1 when it runs b -> a.
   int edge_direction(int f, int a, int b) const;
