@@ -24,6 +24,7 @@ RadiusLaw::RadiusLaw(const RoundOptions& options, const SharpChain& chain, doubl
       throw RoundingError("the radius control point at " + format_point(c.point) + " is " + std::to_string(d) +
                           " mm from the chain, farther than the reach (" + std::to_string(max_distance) + " mm)");
     pts.push_back({s, c.radius});
+    controls_.push_back({s, c});
   }
   std::sort(pts.begin(), pts.end());
   for (const auto& [s, r] : pts) {
@@ -66,6 +67,14 @@ double RadiusLaw::at(double s) const {
   // Cubic Hermite with the monotone slopes.
   const double h00 = (1 + 2 * t) * (1 - t) * (1 - t), h10 = t * (1 - t) * (1 - t), h01 = t * t * (3 - 2 * t), h11 = t * t * (t - 1);
   return h00 * r_[i] + h10 * h * slope_[i] + h01 * r_[i + 1] + h11 * h * slope_[i + 1];
+}
+
+std::string RadiusLaw::nearest_control(double s) const {
+  if (controls_.empty()) return "";
+  const auto& c = *std::min_element(controls_.begin(), controls_.end(), [&](const auto& x, const auto& y) {
+    return std::abs(x.first - s) < std::abs(y.first - s);
+  });
+  return "the radius control point at " + format_point(c.second.point) + " (r = " + std::to_string(c.second.radius) + ")";
 }
 
 double RadiusLaw::min_radius() const { return *std::min_element(r_.begin(), r_.end()); }

@@ -51,6 +51,17 @@ double loft_error(const RoundingSurface& surface, const ProfileStation& exact) {
   return worst;
 }
 
+// The ball at arc length s; when a radius law makes it impossible, the error names the control point.
+ProfileStation station(const SpineContext& ctx, const RadiusLaw& law, double s) {
+  try {
+    return solve_station(ctx, s, law.at(s));
+  } catch (const RoundingError& e) {
+    const std::string control = law.nearest_control(s);
+    if (control.empty()) throw;
+    throw RoundingError(std::string(e.what()) + " (radius law, nearest to " + control + ")");
+  }
+}
+
 // Profiles along the chain: uniform to start with, then wherever the loft strays from the exact ball.
 std::vector<ProfileStation> sample_profiles(const SpineContext& ctx, const RadiusLaw& law, double tolerance,
                                             RoundingSurface& surface, double* loft_deviation) {
@@ -60,7 +71,7 @@ std::vector<ProfileStation> sample_profiles(const SpineContext& ctx, const Radiu
   std::vector<ProfileStation> st;
   for (int i = 0; i < n0; ++i) {
     const double s = chain.closed ? L * i / n0 : L * i / (n0 - 1);
-    st.push_back(solve_station(ctx, s, law.at(s)));
+    st.push_back(station(ctx, law, s));
   }
   const double min_step = 1e-4 * L;
   for (int round = 0; round < 12; ++round) {
@@ -72,7 +83,7 @@ std::vector<ProfileStation> sample_profiles(const SpineContext& ctx, const Radiu
       const double a = st[i].s, b = i + 1 < st.size() ? st[i + 1].s : L;
       if (b - a < min_step) continue;
       const double s = 0.5 * (a + b);
-      ProfileStation mid = solve_station(ctx, s, law.at(s));
+      ProfileStation mid = station(ctx, law, s);
       const double e = loft_error(surface, mid);
       *loft_deviation = std::max(*loft_deviation, e);
       if (e > 0.1 * tolerance) extra.push_back(mid);

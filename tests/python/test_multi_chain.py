@@ -63,3 +63,9 @@ def test_chains_meeting_at_a_corner_are_refused_and_the_input_kept(box):
 def test_a_chain_without_control_points_is_refused(box):
     with pytest.raises(MeshRound.RoundingError, match="no radius control point lies on the chain picked at"):
         MeshRound.round_edges(box, [BOX_SEED, BOX_OTHER_SEED], BACK_LAW)
+
+
+def test_a_law_the_ball_cannot_follow_names_the_control_point(box):
+    law = [(V(0, Y, Z), 3.0), (V(X, Y, Z), 45.0)]  # 45 mm: wider than the 40 mm side face
+    with pytest.raises(MeshRound.RoundingError, match=r"too large.*control point at \(100, 60, 40\) \(r = 45"):
+        MeshRound.round_edges(box, [BOX_SEED], law)

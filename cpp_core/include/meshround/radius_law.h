@@ -4,6 +4,8 @@
 // law; three or more a C1 monotone cubic (Fritsch-Carlson: no overshoot between neighbouring values);
 // the radius is constant before the first and after the last point, periodic on a closed loop.
 #pragma once
+#include <string>
+#include <utility>
 #include <vector>
 
 #include "meshround/chain.h"
@@ -18,8 +20,11 @@ class RadiusLaw {
   double at(double s) const;
   double min_radius() const;
   double max_radius() const;
+  // "the radius control point at (x, y, z) (r = ...)" nearest to arc length s; "" for a constant radius.
+  std::string nearest_control(double s) const;
 
  private:
+  std::vector<std::pair<double, RadiusControl>> controls_;  // as given, with their arc lengths
   std::vector<double> s_, r_, slope_;
   double period_ = 0;  // > 0 on a closed loop
 };
