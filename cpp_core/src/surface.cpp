@@ -35,16 +35,24 @@ Handle(Geom_BSplineCurve) interpolate_raw(const std::vector<Vec3>& pts, const st
 }
 
 // Interpolation through points that may repeat (a contact that stays on a mesh vertex while the ball
-// rolls on): OCCT refuses coincident neighbours, but with the parameters given the interpolation is
-// linear in the points, so the points are lifted apart by s along x and the lift's own interpolation
-// is taken off the poles again.
+// rolls on): OCCT refuses coincident neighbours. With the parameters given the interpolation is linear
+// and works coordinate by coordinate, so each coordinate is interpolated on its own, paired with the
+// parameter itself (which always moves on), and the poles are put together again.
 Handle(Geom_BSplineCurve) interpolate(const std::vector<Vec3>& pts, const std::vector<double>& params, bool periodic) {
-  std::vector<Vec3> lifted(pts), lift(pts.size(), Vec3::Zero());
-  for (size_t i = 0; i < pts.size(); ++i) lift[i].x() = params[i] - params[0], lifted[i] += lift[i];
-  Handle(Geom_BSplineCurve) c = interpolate_raw(lifted, params, periodic), l = interpolate_raw(lift, params, periodic);
-  if (c->NbPoles() != l->NbPoles()) throw RoundingError("inconsistent profile lofts");
-  for (int i = 1; i <= c->NbPoles(); ++i) c->SetPole(i, gp_Pnt(c->Pole(i).XYZ() - l->Pole(i).XYZ()));
-  return c;
+  Handle(Geom_BSplineCurve) out;
+  for (int c = 0; c < 3; ++c) {
+    std::vector<Vec3> lifted(pts.size());
+    for (size_t i = 0; i < pts.size(); ++i) lifted[i] = Vec3(pts[i][c], params[i] - params[0], 0);
+    Handle(Geom_BSplineCurve) one = interpolate_raw(lifted, params, periodic);
+    if (c == 0) out = one;
+    if (one->NbPoles() != out->NbPoles()) throw RoundingError("inconsistent profile lofts");
+    for (int i = 1; i <= out->NbPoles(); ++i) {
+      gp_Pnt p = c == 0 ? gp_Pnt(0, 0, 0) : out->Pole(i);
+      p.SetCoord(c + 1, one->Pole(i).X());
+      out->SetPole(i, p);
+    }
+  }
+  return out;
 }
 
 }  // namespace
@@ -77,7 +85,7 @@ RoundingSurface loft_profiles(const std::vector<ProfileStation>& stations, bool 
   if (closed) params.push_back(params.front() + period);
   Handle(Geom_BSplineCurve) cp[3], cw[3];
   try {
-    for (int j = 0; j < 3; ++j) cp[j] = interpolate(rows[j], params, closed), cw[j] = interpolate(weight_rows[j], params, closed);
+    for (int j = 0; j < 3; ++j) cp[j] = interpolate(rows[j], params, closed), cw[j] = interpolate_raw(weight_rows[j], params, closed);
   } catch (const Standard_Failure& e) {
     throw RoundingError(std::string("lofting the rounding surface failed: ") + e.GetMessageString());
   }

@@ -237,6 +237,46 @@ TrimLines trim_base_meshes(const MeshTopology& mesh, const SharpChain& chain, co
       }
       triangulate_polygon(edit, polygon, n, edit.added);
     }
+
+    // Input edges that lie on the trim line (both ends on it) get points every max_spacing and the kept
+    // facet along them is split to match: the round's boundary row stays as dense as its inner rows.
+    std::vector<std::pair<std::uint64_t, std::vector<int>>> split;  // edge (a < b) -> its points, a to b
+    for (int f : base.facets[side])
+      for (int k = 0; k < 3; ++k) {
+        int a = mesh.F(f, k), b = mesh.F(f, (k + 1) % 3);
+        if (a > b) std::swap(a, b);
+        const VertexSide &sa = vs[a], &sb = vs[b];
+        if (sa.d != 0 || sb.d != 0) continue;
+        const std::uint64_t key = edge_key(a, b);
+        const Vec3 pa = edit.point(a), pb = edit.point(b);
+        const int segs = int(std::ceil((pb - pa).norm() / opt.max_spacing));
+        if (segs < 2 || std::any_of(split.begin(), split.end(), [&](const auto& e) { return e.first == key; })) continue;
+        std::vector<int> ids;
+        for (int i = 1; i < segs; ++i) {
+          const Vec3 q = pa + (pb - pa) * (double(i) / segs);
+          double u = sa.u + wrapped_delta(surface, sa.u, sb.u) * i / segs;
+          distance(q, u, &u);
+          ids.push_back(edit.add_point(q));
+          out.line[side].push_back({ids.back(), u});
+        }
+        split.push_back({key, ids});
+      }
+    for (const auto& [key, ids] : split) {
+      const int a = int(key >> 32), b = int(key & 0xffffffffu);
+      for (int g : mesh.edge_facets(a, b)) {
+        if (edit.removed.count(g)) continue;
+        edit.removed.insert(g);
+        std::vector<int> polygon;
+        for (int k = 0; k < 3; ++k) {
+          const int p = mesh.F(g, k), q = mesh.F(g, (k + 1) % 3);
+          polygon.push_back(p);
+          if (edge_key(p, q) != key) continue;
+          if (p == a) polygon.insert(polygon.end(), ids.begin(), ids.end());
+          else polygon.insert(polygon.end(), ids.rbegin(), ids.rend());
+        }
+        triangulate_polygon(edit, polygon, mesh.facet_normal(g), edit.added);
+      }
+    }
   }
 
   // Capped ends: the corner of the end faces that the round replaces.

@@ -69,3 +69,10 @@ def test_a_law_the_ball_cannot_follow_names_the_control_point(box):
     law = [(V(0, Y, Z), 3.0), (V(X, Y, Z), 45.0)]  # 45 mm: wider than the 40 mm side face
     with pytest.raises(MeshRound.RoundingError, match=r"too large.*control point at \(100, 60, 40\) \(r = 45"):
         MeshRound.round_edges(box, [BOX_SEED], law)
+
+
+def test_both_top_edges_with_one_radius(box):
+    """The front edge runs against x in the mesh's chain order: its profiles must loft as well."""
+    res = MeshRound.round_edges(box, [BOX_SEED, BOX_OTHER_SEED], 5.0)
+    assert res.report["chains"] == 2 and len(res.surfaces) == 2
+    assert res.mesh.isSolid() and not res.mesh.hasSelfIntersections()
