@@ -122,8 +122,9 @@ def run(work_dir):
     step("failed", {"state": rounding.State, "report_view": report_view_text()[-3000:],
                     "base_state": box.State})
     rounding.ViewObject.Proxy.doubleClicked(rounding.ViewObject)  # the panel of a failed feature says why
-    step("failed_edit_status", active_panel().form.status.text())
-    press_task_button("cancel")
+    step("failed_edit_status", active_panel().form.status.text())  # before the preview's timer fires
+    FreeCADGui.updateGui()
+    step("failed_edit_cancelled", press_task_button("cancel") and not FreeCADGui.Control.activeDialog())
     rounding.Radius = 4.0
     doc.recompute()
 
