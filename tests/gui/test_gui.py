@@ -56,6 +56,12 @@ def test_workbench_icon_toolbar_menu_and_command(observed):
 def test_scripted_pick_highlights_the_chain(observed):
     assert observed["scripted_seed_added"]
     assert observed["chain_lengths"] == pytest.approx([100.0])
+    # and the highlight is drawn: the preview screenshot (both chains picked) has orange lines, red seeds
+    pixels = read_png(os.path.join(ARTIFACTS, "gui_preview.png")).astype(int)
+    r, g, b = pixels[..., 0], pixels[..., 1], pixels[..., 2]
+    orange = (r > 200) & (g > 80) & (g < 160) & (b < 60)
+    red = (r > 150) & (g < 40) & (b < 40)
+    assert orange.sum() > 1000 and red.sum() > 20, (orange.sum(), red.sum())
 
 
 def test_mouse_click_adds_a_seed_and_its_chain(observed):
