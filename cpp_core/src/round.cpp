@@ -142,7 +142,13 @@ RoundedChain round_one_chain(const MeshTopology& mesh, const Vec3& seed, const R
   const size_t round_begin = edit.added.size();
   const RoundMeshStats mesh_stats = mesh_rounding_surface(surface, stations, trim, tol, edit);
   timer.done("tessellate");
-  const SewStats sew = sew_round(edit, round_begin, round_begin + mesh_stats.facets);
+  // End caps get inner points for shape, but only within the reach: beyond it nothing changes.
+  const Refinement shape{20.0, [&](const Vec3& p) {
+                           double d;
+                           chain.project(p, &d);
+                           return d <= reach;
+                         }};
+  const SewStats sew = sew_round(edit, round_begin, round_begin + mesh_stats.facets, shape);
   write_mesh(edit, V_out, F_out);
   timer.done("sew");
 

@@ -43,7 +43,7 @@ std::unordered_map<std::uint64_t, EdgeUse> edges_near_edit(const MeshEdit& edit)
 
 }  // namespace
 
-SewStats sew_round(MeshEdit& edit, size_t round_begin, size_t round_end) {
+SewStats sew_round(MeshEdit& edit, size_t round_begin, size_t round_end, const Refinement& fill) {
   SewStats stats;
   // Orientation: the round runs each shared edge against the trimmed facet next to it.
   std::unordered_map<std::uint64_t, int> direction;  // directed edge of a non-round facet
@@ -97,7 +97,7 @@ SewStats sew_round(MeshEdit& edit, size_t round_begin, size_t round_end) {
       fprintf(stderr, "\n");
     }
     const size_t before = edit.added.size();
-    triangulate_polygon(edit, loop, normal, edit.added);
+    triangulate_polygon(edit, loop, normal, edit.added, fill);
     stats.gap_facets += int(edit.added.size() - before);
   }
   return stats;

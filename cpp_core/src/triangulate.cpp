@@ -2,6 +2,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <functional>
 #include <unordered_map>
 
 #include "meshround/mesh_edit.h"
@@ -55,10 +56,83 @@ void improve_by_flips(const std::vector<Vec3>& P, const std::vector<Eigen::Vecto
   }
 }
 
+bool inside_polygon(const Eigen::Vector2d& p, const std::vector<Eigen::Vector2d>& Q, size_t boundary) {
+  bool in = false;
+  for (size_t i = 0, j = boundary - 1; i < boundary; j = i++)
+    if ((Q[i].y() > p.y()) != (Q[j].y() > p.y()) &&
+        p.x() < (Q[j].x() - Q[i].x()) * (p.y() - Q[i].y()) / (Q[j].y() - Q[i].y()) + Q[i].x())
+      in = !in;
+  return in;
+}
+
+// Delaunay refinement that never splits the polygon's sides (they are shared with neighbours): the
+// circumcentre of the worst triangle, or else the apex of an equilateral triangle on its shortest side,
+// goes in when it lies inside, at least half its spacing from every side and vertex, and where the
+// caller admits points; flips then restore the best triangulation.
+// New points follow the polygon's own in P / Q.
+void add_inner_points(std::vector<Vec3>& P, std::vector<Eigen::Vector2d>& Q, std::vector<std::array<int, 3>>& tris,
+                      size_t boundary, const Refinement& refine, const Vec3& e1, const Vec3& e2) {
+  const double quality = refine.quality_deg * M_PI / 180;
+  auto to_3d = [&](const Eigen::Vector2d& x) { return Vec3(P[0] + (x.x() - Q[0].x()) * e1 + (x.y() - Q[0].y()) * e2); };
+  std::vector<char> hopeless(tris.size(), 0);
+  for (size_t added = 0; added < 4 * boundary + 16;) {
+    int worst = -1;
+    double worst_q = quality;
+    for (int t = 0; t < int(tris.size()); ++t) {
+      const double q = hopeless[t] ? INFINITY : min_angle(P[tris[t][0]], P[tris[t][1]], P[tris[t][2]]);
+      if (q < worst_q) worst_q = q, worst = t;
+    }
+    if (worst < 0) return;
+    const auto& w = tris[worst];
+    const Eigen::Vector2d a = Q[w[0]], ba = Q[w[1]] - a, ca = Q[w[2]] - a;
+    const double d = 2 * (ba.x() * ca.y() - ba.y() * ca.x());
+    auto host_of = [&](const Eigen::Vector2d& x, double spacing) {  // -1: not a good place
+      if (!inside_polygon(x, Q, boundary)) return -1;
+      for (size_t i = 0; i < boundary; ++i) {
+        const Eigen::Vector2d &p = Q[i], &q = Q[(i + 1) % boundary];
+        const double t = std::clamp((x - p).dot(q - p) / std::max((q - p).squaredNorm(), 1e-300), 0.0, 1.0);
+        if ((x - (p + t * (q - p))).norm() <= 0.5 * spacing) return -1;
+      }
+      for (const auto& q : Q)
+        if ((q - x).norm() <= 0.5 * spacing) return -1;
+      if (refine.admit && !refine.admit(to_3d(x))) return -1;
+      for (int t = 0; t < int(tris.size()); ++t) {
+        const auto &p = Q[tris[t][0]], &q = Q[tris[t][1]], &r = Q[tris[t][2]];
+        if (cross2(p, q, x) >= 0 && cross2(q, r, x) >= 0 && cross2(r, p, x) >= 0) return t;
+      }
+      return -1;
+    };
+    Eigen::Vector2d centre = a + Eigen::Vector2d(ca.y() * ba.squaredNorm() - ba.y() * ca.squaredNorm(),
+                                                 ba.x() * ca.squaredNorm() - ca.x() * ba.squaredNorm()) / d;
+    int host = d > 0 ? host_of(centre, (centre - a).norm()) : -1;
+    if (host < 0) {  // else the apex of an equilateral triangle on the shortest side (an off-centre)
+      int k0 = 0;
+      for (int k = 1; k < 3; ++k)
+        if ((Q[w[(k + 1) % 3]] - Q[w[k]]).norm() < (Q[w[(k0 + 1) % 3]] - Q[w[k0]]).norm()) k0 = k;
+      const Eigen::Vector2d s0 = Q[w[k0]], s1 = Q[w[(k0 + 1) % 3]];
+      centre = 0.5 * (s0 + s1) + 0.866 * Eigen::Vector2d(-(s1 - s0).y(), (s1 - s0).x());
+      host = host_of(centre, 0.866 * (s1 - s0).norm());
+    }
+    if (host < 0) {
+      hopeless[worst] = 1;
+      continue;
+    }
+    const int k = int(P.size());
+    Q.push_back(centre), P.push_back(to_3d(centre));
+    const auto h = tris[host];
+    tris[host] = {h[0], h[1], k};
+    tris.push_back({h[1], h[2], k});
+    tris.push_back({h[2], h[0], k});
+    improve_by_flips(P, Q, tris);
+    hopeless.assign(tris.size(), 0);
+    ++added;
+  }
+}
+
 }  // namespace
 
-void triangulate_polygon(const MeshEdit& edit, const std::vector<int>& polygon, const Vec3& normal,
-                         std::vector<std::array<int, 3>>& out) {
+void triangulate_polygon(MeshEdit& edit, const std::vector<int>& polygon, const Vec3& normal,
+                         std::vector<std::array<int, 3>>& out, const Refinement& refine) {
   std::vector<int> ring = polygon;
   // Drop repeated consecutive ids (a trim point that coincides with a corner).
   ring.erase(std::unique(ring.begin(), ring.end()), ring.end());
@@ -114,6 +188,16 @@ void triangulate_polygon(const MeshEdit& edit, const std::vector<int>& polygon, 
   }
   tris.push_back({idx[0], idx[1], idx[2]});
   improve_by_flips(P, Q, tris);
+  const size_t boundary = ring.size();
+  if (refine.quality_deg > 0) {
+    // Inner points only where the polygon is flat: they are placed in its plane.
+    double size = 0, off = 0;
+    for (size_t i = 0; i < boundary; ++i) size = std::max(size, (P[i] - P[0]).norm());
+    for (size_t i = 0; i < boundary; ++i) off = std::max(off, std::abs((P[i] - P[0]).dot(n)));
+    if (off <= 1e-9 * size) add_inner_points(P, Q, tris, boundary, refine, e1, e2);
+  }
+  ring.resize(P.size(), -1);
+  for (size_t i = boundary; i < P.size(); ++i) ring[i] = edit.add_point(P[i]);
   for (const auto& t : tris) {
     if (flipped) out.push_back({ring[t[2]], ring[t[1]], ring[t[0]]});
     else out.push_back({ring[t[0]], ring[t[1]], ring[t[2]]});

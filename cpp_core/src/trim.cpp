@@ -65,14 +65,16 @@ void remove_cap_corner(const MeshTopology& mesh, const BaseMeshes& base, int cor
   const Eigen::Matrix2d gram_inv = (basis.transpose() * basis).inverse();
   const Vec3 plane_normal = a.cross(b).normalized();
   // R: the corner of the end face between the two faces' traces and the arc. `closed` admits its
-  // boundary too (but not the contacts themselves, which the round keeps).
+  // boundary too (but not the contacts themselves, which the round keeps), and a rim a tenth of r
+  // inside the arc: a vertex that near the arc would only leave slivers between itself and the arc.
   auto in_corner_region = [&](const Vec3& p, bool closed) {
     const Vec3 d = p - st.centre;
     if (std::abs(d.dot(plane_normal)) > 1e-3 * r) return false;
     const Eigen::Vector2d ab = gram_inv * (basis.transpose() * d);
     const double e = closed ? -eps : eps;
     if (closed && ((p - st.contact[0]).norm() < 1e-6 * r || (p - st.contact[1]).norm() < 1e-6 * r)) return false;
-    return ab.x() > e && ab.y() > e && d.norm() > r + e && d.dot(a) < r - e && d.dot(b) < r - e;
+    const double rim = closed ? 0.1 * r : -eps;
+    return ab.x() > e && ab.y() > e && d.norm() > r - rim && d.dot(a) < r - e && d.dot(b) < r - e;
   };
   auto strictly_inside = [&](const Vec3& p) { return in_corner_region(p, false); };
   std::vector<int> todo(mesh.facets_begin(corner), mesh.facets_end(corner));

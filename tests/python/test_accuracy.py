@@ -40,8 +40,8 @@ KNOWN_FAULTS = {
     "topology": {("s_chain", "coarse"), ("s_chain_var3", "coarse")},
     "locality": set(),
     "smoothness": {("s_chain", "coarse"), ("s_chain_var3", "coarse")},
-    "quality": {("box", "coarse"), ("box", "cad"), ("lchannel", "cad"), ("draft_shoulder", "cad"),
-                ("box_var", "coarse"), ("box_var", "cad"), ("lchannel_var", "cad")},
+    "quality": {("box", "cad"), ("lchannel", "cad"), ("draft_shoulder", "cad"), ("box_var", "coarse"),
+                ("box_var", "cad"), ("lchannel_var", "cad")},
 }
 
 

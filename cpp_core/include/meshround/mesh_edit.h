@@ -2,6 +2,7 @@
 // input is never touched and a failure leaves nothing half done.
 #pragma once
 #include <array>
+#include <functional>
 #include <unordered_map>
 #include <unordered_set>
 #include <vector>
@@ -31,9 +32,17 @@ struct MeshEdit {
   }
 };
 
+// Inner points for a better triangulation of a flat polygon (none by default).
+struct Refinement {
+  double quality_deg = 0;                  // > 0: add points while a triangle has a smaller angle
+  std::function<bool(const Vec3&)> admit;  // optional: where points may go
+};
+
 // Triangulates a simple polygon (vertex ids, in order) in the plane with normal `normal`: ear clipping
-// that always cuts the best-shaped ear. Triangles keep the polygon's orientation.
-void triangulate_polygon(const MeshEdit& edit, const std::vector<int>& polygon, const Vec3& normal,
-                         std::vector<std::array<int, 3>>& out);
+// that always cuts the best-shaped ear, then flips to the best triangulation; with `refine`, points are
+// added inside (never on its sides) where that improves the worst triangle. Triangles keep the
+// polygon's orientation.
+void triangulate_polygon(MeshEdit& edit, const std::vector<int>& polygon, const Vec3& normal,
+                         std::vector<std::array<int, 3>>& out, const Refinement& refine = {});
 
 }  // namespace meshround

@@ -15,7 +15,8 @@ struct SewStats {
 };
 
 // `round_begin`: index in edit.added of the round's first facet (the rest up to round_end are the round).
-SewStats sew_round(MeshEdit& edit, size_t round_begin, size_t round_end);
+// `fill` refines the triangulation of the gaps (end caps), e.g. inner points near the chain only.
+SewStats sew_round(MeshEdit& edit, size_t round_begin, size_t round_end, const Refinement& fill = {});
 
 // The edited mesh as compact arrays: unused vertices dropped, input vertices keep their order and values.
 void write_mesh(const MeshEdit& edit, Points& V, Triangles& F);
