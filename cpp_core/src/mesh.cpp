@@ -59,6 +59,11 @@ std::vector<int> MeshTopology::edge_facets(int a, int b) const {
   return out;
 }
 
+int MeshTopology::edge_facet_count(int a, int b) const {
+  int pair[2];
+  return edge_facet_pair(a, b, pair);
+}
+
 int MeshTopology::neighbour(int f, int a, int b) const {
   int other = -1, count = 0;
   for (const int* g = facets_begin(a); g != facets_end(a); ++g)
@@ -126,9 +131,19 @@ Vec3 MeshTopology::feature_normal(int f, int a, int b, double feature_angle_deg)
   return l > 0 ? Vec3(sum / l) : n;
 }
 
+int MeshTopology::edge_facet_pair(int a, int b, int pair[2]) const {
+  int n = 0;
+  for (const int* f = facets_begin(a); f != facets_end(a); ++f)
+    if (facet_has_edge(*f, a, b)) {
+      if (n < 2) pair[n] = *f;
+      ++n;
+    }
+  return n;
+}
+
 double MeshTopology::dihedral_deg(int a, int b) const {
-  const std::vector<int> fs = edge_facets(a, b);
-  if (fs.size() != 2) return 180.0;
+  int fs[2];
+  if (edge_facet_pair(a, b, fs) != 2) return 180.0;
   Vec3 n0 = facet_normal(fs[0]), n1 = facet_normal(fs[1]);
   // Consistently oriented neighbours run the shared edge in opposite directions.
   if (edge_direction(fs[0], a, b) == edge_direction(fs[1], a, b)) n1 = -n1;
@@ -136,8 +151,8 @@ double MeshTopology::dihedral_deg(int a, int b) const {
 }
 
 bool MeshTopology::is_feature_edge(int a, int b, double feature_angle_deg) const {
-  const std::vector<int> fs = edge_facets(a, b);
-  if (fs.size() != 2) return true;
+  int fs[2];
+  if (edge_facet_pair(a, b, fs) != 2) return true;
   if (dihedral_deg(a, b) < feature_angle_deg) return false;
   Vec3 n0 = feature_normal(fs[0], a, b, feature_angle_deg), n1 = feature_normal(fs[1], a, b, feature_angle_deg);
   if (edge_direction(fs[0], a, b) == edge_direction(fs[1], a, b)) n1 = -n1;

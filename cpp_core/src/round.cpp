@@ -101,7 +101,7 @@ void check_base_meshes(const MeshTopology& mesh, const BaseMeshes& base) {
   for (int side = 0; side < 2; ++side)
     for (int f : base.facets[side])
       for (int k = 0; k < 3; ++k)
-        if (mesh.edge_facets(mesh.F(f, k), mesh.F(f, (k + 1) % 3)).size() > 2)
+        if (mesh.edge_facet_count(mesh.F(f, k), mesh.F(f, (k + 1) % 3)) > 2)
           throw RoundingError("the edge at " + format_point(0.5 * (mesh.corner(f, k) + mesh.corner(f, (k + 1) % 3))) +
                               " near the chain is non-manifold (more than two facets share it); repair the mesh there first");
 }

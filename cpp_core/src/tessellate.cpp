@@ -42,11 +42,12 @@ double distance_to_surface(const RoundingSurface& s, const Vec3& p, double u, do
     if (!step.allFinite()) break;
     // Damped: a step is taken only when it brings the surface point nearer (halved until it does).
     bool improved = false;
+    const double before = best;
     for (int half = 0; half < 6 && !improved; ++half, step *= 0.5) {
       const double u2 = u + step(0), v2 = std::clamp(v + step(1), 0.0, 1.0), d = (s.value(u2, v2) - p).norm();
       if (d < best) best = d, u = u2, v = v2, improved = true;
     }
-    if (!improved) break;
+    if (!improved || before - best < 1e-3 * before) break;  // converged
   }
   return best;
 }

@@ -35,6 +35,8 @@ class MeshTopology {
 
   // Facets that share the edge (a, b): 1 on a boundary, 2 inside, more where the mesh is non-manifold.
   std::vector<int> edge_facets(int a, int b) const;
+  int edge_facet_count(int a, int b) const;  // the same, counted only (no allocation)
+  int edge_facet_pair(int a, int b, int pair[2]) const;  // the count; the first two facets in `pair`
   // The other facet on edge (a, b) of facet f, or -1 when the edge is a boundary or non-manifold.
   int neighbour(int f, int a, int b) const;
   // Vertices joined to v by an edge.
