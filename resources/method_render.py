@@ -20,8 +20,10 @@ import FreeCAD  # noqa: E402
 import FreeCADGui  # noqa: E402
 import MeshPart  # noqa: E402
 import Part  # noqa: E402
-from pivy import coin  # noqa: E402
 from PySide import QtCore, QtGui  # noqa: E402
+
+sys.path.insert(0, HERE)
+import view_camera  # noqa: E402
 
 OUT = os.environ.get("METHOD_PNG", os.path.join(HERE, "images", "method.png"))
 TILE = (640, 520)
@@ -94,18 +96,8 @@ def build(doc):
 
 
 def set_camera(view):
-    """Orthographic, looking at the edge's end x = 0 obliquely, so the round's profile shows."""
-    d = FreeCAD.Vector(1.0, -0.75, -0.55).normalize()
-    z = -d
-    x = FreeCAD.Vector(0, 0, 1).cross(z).normalize()
-    y = z.cross(x)
-    q = FreeCAD.Rotation(FreeCAD.Matrix(x.x, y.x, z.x, 0, x.y, y.y, z.y, 0, x.z, y.z, z.z, 0, 0, 0, 0, 1)).Q
-    cam = view.getCameraNode()
-    cam.orientation.setValue(coin.SbRotation(*q))
-    focus = FreeCAD.Vector(26.0, 55.0, 33.0)
-    cam.position.setValue(coin.SbVec3f(*(focus - d * 500.0)))
-    cam.focalDistance.setValue(500.0)
-    cam.height.setValue(58.0)
+    """Looking at the edge's end x = 0 obliquely, so the round's profile shows."""
+    view_camera.set_camera(view, (1.0, -0.75, -0.55), (26.0, 55.0, 33.0), 58.0)
 
 
 def main():

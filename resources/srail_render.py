@@ -10,14 +10,17 @@ $SRAIL_OUT/srail_before_after.png; with SRAIL_SMALL=path also a half-size copy t
 when done (also on error).
 """
 import os
+import sys
 import traceback
 
 import FreeCAD
 import FreeCADGui
 import Mesh
 import numpy as np
-from pivy import coin
 from PySide import QtCore, QtGui
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from view_camera import set_camera  # noqa: E402
 
 OUT = os.environ.get("SRAIL_OUT", os.path.join(os.getcwd(), "out"))
 SMALL = os.environ.get("SRAIL_SMALL")
@@ -65,24 +68,6 @@ def show_only(doc, shown, facets):
         vo.DisplayMode = "Flat Lines" if facets else "Shaded"
         vo.ShapeColor = color
         vo.LineColor = LINES
-
-
-def set_camera(view, direction, focus, height):
-    """Orthographic camera looking along `direction` (z up on screen); centred on `focus` with `height`
-    mm of view, or fitted to what is shown when focus is None."""
-    d = FreeCAD.Vector(*direction).normalize()
-    z = -d
-    x = FreeCAD.Vector(0, 0, 1).cross(z).normalize()
-    y = z.cross(x)
-    q = FreeCAD.Rotation(FreeCAD.Matrix(x.x, y.x, z.x, 0, x.y, y.y, z.y, 0, x.z, y.z, z.z, 0, 0, 0, 0, 1)).Q
-    cam = view.getCameraNode()
-    cam.orientation.setValue(coin.SbRotation(*q))
-    if focus is None:
-        view.fitAll()
-        return
-    cam.position.setValue(coin.SbVec3f(*(FreeCAD.Vector(*focus) - d * 500.0)))
-    cam.focalDistance.setValue(500.0)
-    cam.height.setValue(height)
 
 
 def snapshot(view, path, row):
