@@ -56,6 +56,12 @@ void improve_by_flips(const std::vector<Vec3>& P, const std::vector<Eigen::Vecto
   }
 }
 
+double smallest_angle_of(const std::vector<Vec3>& P, const std::vector<std::array<int, 3>>& tris) {
+  double q = INFINITY;
+  for (const auto& t : tris) q = std::min(q, min_angle(P[t[0]], P[t[1]], P[t[2]]));
+  return q;
+}
+
 bool inside_polygon(const Eigen::Vector2d& p, const std::vector<Eigen::Vector2d>& Q, size_t boundary) {
   bool in = false;
   for (size_t i = 0, j = boundary - 1; i < boundary; j = i++)
@@ -68,7 +74,8 @@ bool inside_polygon(const Eigen::Vector2d& p, const std::vector<Eigen::Vector2d>
 // Delaunay refinement that never splits the polygon's sides (they are shared with neighbours): the
 // circumcentre of the worst triangle, or else the apex of an equilateral triangle on its shortest side,
 // goes in when it lies inside, at least half its spacing from every side and vertex, and where the
-// caller admits points; flips then restore the best triangulation.
+// caller admits points; flips then restore the best triangulation. A point after which some triangle is
+// worse than the one it was meant to mend is taken out again.
 // New points follow the polygon's own in P / Q.
 void add_inner_points(std::vector<Vec3>& P, std::vector<Eigen::Vector2d>& Q, std::vector<std::array<int, 3>>& tris,
                       size_t boundary, const Refinement& refine, const Vec3& e1, const Vec3& e2) {
@@ -118,12 +125,18 @@ void add_inner_points(std::vector<Vec3>& P, std::vector<Eigen::Vector2d>& Q, std
       continue;
     }
     const int k = int(P.size());
+    const std::vector<std::array<int, 3>> before = tris;
     Q.push_back(centre), P.push_back(to_3d(centre));
     const auto h = tris[host];
     tris[host] = {h[0], h[1], k};
     tris.push_back({h[1], h[2], k});
     tris.push_back({h[2], h[0], k});
     improve_by_flips(P, Q, tris);
+    if (smallest_angle_of(P, tris) < worst_q - 1e-12) {  // it made a worse triangle elsewhere: take it back
+      tris = before, P.pop_back(), Q.pop_back();
+      hopeless[worst] = 1;
+      continue;
+    }
     hopeless.assign(tris.size(), 0);
     ++added;
   }
