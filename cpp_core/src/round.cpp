@@ -137,17 +137,18 @@ RoundedChain round_one_chain(const MeshTopology& mesh, const Vec3& seed, const R
 
   MeshEdit edit(mesh);
   const double spacing = 2.5 * law.max_radius() * stations.front().angle() / profile_segments(stations, tol);
-  const TrimLines trim = trim_base_meshes(mesh, chain, base, surface, stations, {tol, std::max(spacing, 1e-6)}, edit);
-  timer.done("trim");
-  const size_t round_begin = edit.added.size();
-  const RoundMeshStats mesh_stats = mesh_rounding_surface(surface, stations, trim, tol, edit);
-  timer.done("tessellate");
-  // End caps get inner points for shape, but only within the reach: beyond it nothing changes.
+  // Cut facets and end caps get inner points for shape, but only within the reach: beyond it nothing
+  // changes.
   const Refinement shape{20.0, [&](const Vec3& p) {
                            double d;
                            chain.project(p, &d);
                            return d <= reach;
                          }};
+  const TrimLines trim = trim_base_meshes(mesh, chain, base, surface, stations, {tol, std::max(spacing, 1e-6), shape}, edit);
+  timer.done("trim");
+  const size_t round_begin = edit.added.size();
+  const RoundMeshStats mesh_stats = mesh_rounding_surface(surface, stations, trim, tol, edit);
+  timer.done("tessellate");
   const SewStats sew = sew_round(edit, round_begin, round_begin + mesh_stats.facets, shape);
   write_mesh(edit, V_out, F_out);
   timer.done("sew");

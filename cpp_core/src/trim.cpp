@@ -237,7 +237,7 @@ TrimLines trim_base_meshes(const MeshTopology& mesh, const SharpChain& chain, co
         }
         polygon.push_back(ring[i].vertex);
       }
-      triangulate_polygon(edit, polygon, n, edit.added);
+      triangulate_polygon(edit, polygon, n, edit.added, opt.shape);
     }
 
     // Input edges that lie on the trim line (both ends on it) get points every max_spacing and the kept
