@@ -118,6 +118,9 @@ def write_document(out_dir, mesh, seeds, law):
         if broken:
             raise DemoError(f"the document's recompute failed for {', '.join(broken)} (FreeCAD's report "
                             "view / console says why)")
+        for old in (path, path + "1"):  # saving over a file leaves FreeCAD's backup (.FCStd1) behind
+            if os.path.exists(old):
+                os.remove(old)
         doc.saveAs(path)
     finally:
         FreeCAD.closeDocument(doc.Name)
