@@ -303,6 +303,17 @@ BaseMeshes collect_base_meshes(const MeshTopology& mesh, const SharpChain& chain
     within_reach(chain.facet_a[i], chain.arc_length[i]);
     within_reach(chain.facet_b[i], chain.arc_length[i]);
   }
+  // A thin facet on a chain edge holds part of the edge's fold: its other edges are folds too, not walls.
+  std::unordered_set<int> fold_facets;
+  const double fold_width = reach_distance / 6;  // as trace_chain's, at the same reach
+  for (int i = 0; i < chain.num_edges(); ++i)
+    for (int f : {chain.facet_a[i], chain.facet_b[i]}) {
+      const int v = chain.vertices[i], u = chain.vertices[(i + 1) % n];
+      int x = mesh.F(f, 0);
+      for (int k = 0; k < 3; ++k)
+        if (mesh.F(f, k) != v && mesh.F(f, k) != u) x = mesh.F(f, k);
+      if (thin_facet(mesh, v, u, x, fold_width)) fold_facets.insert(f);
+    }
   for (int side = 0; side < 2; ++side) {
     std::vector<int> todo;
     for (int f : side == 0 ? chain.facet_a : chain.facet_b) {
@@ -322,7 +333,7 @@ BaseMeshes collect_base_meshes(const MeshTopology& mesh, const SharpChain& chain
         if (g >= 0 && mesh.facet_degenerate(g))
           throw RoundingError("facet " + std::to_string(g) + " at " + format_point(mesh.corner(g, 0)) +
                               " near the chain is degenerate (no area); repair the mesh there first");
-        if (g < 0 || mesh.is_feature_edge(a, b, feature_angle_deg)) {
+        if (g < 0 || (!fold_facets.count(f) && mesh.is_feature_edge(a, b, feature_angle_deg))) {
           base.walls[side].insert(key);
           continue;
         }
