@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <unordered_set>
 
 #include <Eigen/Dense>
 
@@ -86,6 +87,14 @@ RoundMeshStats mesh_rounding_surface(const RoundingSurface& surface, const std::
     if (row.size() < 2) throw RoundingError("the trim line on side " + std::string(side ? "B" : "A") + " is empty");
     if (surface.closed) row.push_back({row.front().id, row.front().u + period, double(side)});
   }
+
+  // Trim points that lie off the surface's edge (the base mesh leaves the lofted edge between two
+  // profiles, e.g. where the contact jumps across a fold of a coarse mesh): no refinement along the
+  // round can bring a facet on them nearer, so they do not ask for any.
+  std::unordered_set<int> off_edge;
+  for (int side = 0; side < 2; ++side)
+    for (const RowPoint& p : side ? last_row : first_row)
+      if ((surface.value(p.u, side) - edit.point(p.id)).norm() > 0.5 * tolerance) off_edge.insert(p.id);
 
   if (getenv("MESHROUND_DEBUG")) {
     for (int side = 0; side < 2; ++side) {
@@ -178,7 +187,8 @@ RoundMeshStats mesh_rounding_surface(const RoundingSurface& surface, const std::
       if (worst > 0.9 * tolerance && getenv("MESHROUND_DEBUG") && round == 0)
         fprintf(stderr, "  bad %g: u %.4f %.4f %.4f v %.3f %.3f %.3f ids %d %d %d\n", worst, tri[0].u, tri[1].u, tri[2].u,
                 tri[0].v, tri[1].v, tri[2].v, tri[0].id, tri[1].id, tri[2].id);
-      if (worst > 0.9 * tolerance)
+      const bool helpless = std::any_of(tri.begin(), tri.end(), [&](const RowPoint& p) { return p.id >= 0 && off_edge.count(p.id); });
+      if (worst > 0.9 * tolerance && !helpless)
         bad.push_back({std::min({tri[0].u, tri[1].u, tri[2].u}), std::max({tri[0].u, tri[1].u, tri[2].u})});
     }
     if (getenv("MESHROUND_DEBUG")) fprintf(stderr, "refine round %d: %zu facets, %zu bad, U %zu, max dev %g\n", round, tris.size(), bad.size(), U.size(), stats.max_deviation);
