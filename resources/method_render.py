@@ -11,7 +11,6 @@ quits when done (also on error).
 """
 import os
 import sys
-import traceback
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, os.path.join(HERE, "..", "Mod", "MeshRound"))
@@ -23,7 +22,7 @@ import Part  # noqa: E402
 from PySide import QtCore, QtGui  # noqa: E402
 
 sys.path.insert(0, HERE)
-import view_camera  # noqa: E402
+import render_support  # noqa: E402
 
 OUT = os.environ.get("METHOD_PNG", os.path.join(HERE, "images", "method.png"))
 TILE = (640, 520)
@@ -97,7 +96,7 @@ def build(doc):
 
 def set_camera(view):
     """Looking at the edge's end x = 0 obliquely, so the round's profile shows."""
-    view_camera.set_camera(view, (1.0, -0.75, -0.55), (26.0, 55.0, 33.0), 58.0)
+    render_support.set_camera(view, (1.0, -0.75, -0.55), (26.0, 55.0, 33.0), 58.0)
 
 
 def main():
@@ -134,9 +133,4 @@ def main():
     out.save(OUT)
 
 
-try:
-    main()
-except Exception:  # noqa: BLE001  -- report, then quit anyway: this runs unattended
-    traceback.print_exc()
-finally:
-    os._exit(0)
+render_support.run_unattended(main)

@@ -11,7 +11,6 @@ when done (also on error).
 """
 import os
 import sys
-import traceback
 
 import FreeCAD
 import FreeCADGui
@@ -20,7 +19,7 @@ import numpy as np
 from PySide import QtCore, QtGui
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from view_camera import set_camera  # noqa: E402
+from render_support import run_unattended, set_camera  # noqa: E402
 
 OUT = os.environ.get("SRAIL_OUT", os.path.join(os.getcwd(), "out"))
 SMALL = os.environ.get("SRAIL_SMALL")
@@ -133,9 +132,4 @@ def main():
             os.remove(os.path.join(OUT, f))
 
 
-try:
-    main()
-except Exception:  # noqa: BLE001  -- report, then quit anyway: this runs unattended
-    traceback.print_exc()
-finally:
-    os._exit(0)
+run_unattended(main)

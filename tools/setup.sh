@@ -35,7 +35,7 @@ MOD_DIR="$HOME/.local/share/FreeCAD/Mod/MeshRound"
 # The demo's files, so that the installed `meshround demo` runs without the source tree.
 rm -rf "$MOD_DIR/resources"
 mkdir -p "$MOD_DIR/resources/srail"
-cp "$ROOT/resources/srail_demo.py" "$ROOT/resources/srail_render.py" "$ROOT/resources/view_camera.py" "$MOD_DIR/resources/"
+cp "$ROOT/resources/srail_demo.py" "$ROOT/resources/srail_render.py" "$ROOT/resources/render_support.py" "$MOD_DIR/resources/"
 cp "$ROOT/resources/srail/srail_die.py" "$ROOT/resources/srail/README.md" "$MOD_DIR/resources/srail/"
 # The `meshround` command line.
 BIN_DIR="$HOME/.local/bin"

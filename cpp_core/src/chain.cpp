@@ -8,7 +8,7 @@ namespace meshround {
 namespace {
 
 bool is_sharp(const MeshTopology& mesh, int a, int b, double feature_angle_deg) {
-  return mesh.edge_facets(a, b).size() == 2 && mesh.is_feature_edge(a, b, feature_angle_deg);
+  return mesh.edge_facet_count(a, b) == 2 && mesh.is_feature_edge(a, b, feature_angle_deg);
 }
 
 // Distance from p to facet f.
@@ -53,25 +53,30 @@ std::pair<int, int> nearest_sharp_edge(const MeshTopology& mesh, const Vec3& see
   return edge;
 }
 
+// How thin a facet along a sharp edge may be to count as part of the edge's fold: half the radius at the
+// default reach factor of 3, for the distance within which the chain and its base meshes are searched.
+double fold_width(double reach_distance) { return reach_distance / 6; }
+
 // True when a facet (v, u, x) exists and is thin: its smallest height is under a quarter of its longest
-// edge and under `fold_width` (a coarse mesher's triangle along a sharp edge, holding part of the fold).
-bool thin_facet(const MeshTopology& mesh, int v, int u, int x, double fold_width) {
+// edge and under `fold` (fold_width): a coarse mesher's triangle along a sharp edge, holding part of its
+// fold.
+bool thin_facet(const MeshTopology& mesh, int v, int u, int x, double fold) {
   for (const int* f = mesh.facets_begin(v); f != mesh.facets_end(v); ++f) {
     if (!mesh.facet_has_edge(*f, u, x)) continue;
     const Vec3 a = mesh.point(v), b = mesh.point(u), c = mesh.point(x);
     const double longest = std::max({(b - a).norm(), (c - b).norm(), (a - c).norm()});
     const double height = (b - a).cross(c - a).norm() / std::max(longest, 1e-300);
-    return height < 0.25 * longest && height < fold_width;
+    return height < 0.25 * longest && height < fold;
   }
   return false;
 }
 
 // One step along the chain from `prev` -> `v`: the next vertex, or -1 with the reason it ends.
-int next_chain_vertex(const MeshTopology& mesh, int prev, int v, double feature_angle_deg, double fold_width,
+int next_chain_vertex(const MeshTopology& mesh, int prev, int v, double feature_angle_deg, double fold,
                       ChainEnd* end) {
   std::vector<int> ahead;
   for (int w : mesh.vertex_neighbours(v)) {
-    const size_t nf = mesh.edge_facets(v, w).size();
+    const int nf = mesh.edge_facet_count(v, w);
     if (nf == 1) return *end = ChainEnd::Boundary, -1;
     if (nf > 2) return *end = ChainEnd::Junction, -1;
     if (w != prev && mesh.is_feature_edge(v, w, feature_angle_deg)) ahead.push_back(w);
@@ -88,10 +93,10 @@ int next_chain_vertex(const MeshTopology& mesh, int prev, int v, double feature_
   int best = -1;
   for (int w : ahead) {
     const bool alone = std::all_of(ahead.begin(), ahead.end(), [&](int x) {
-      return x == w || thin_facet(mesh, v, prev, x, fold_width) || thin_facet(mesh, v, w, x, fold_width);
+      return x == w || thin_facet(mesh, v, prev, x, fold) || thin_facet(mesh, v, w, x, fold);
     });
     const bool apex = std::any_of(ahead.begin(), ahead.end(), [&](int x) {
-      return x != w && thin_facet(mesh, v, w, x, fold_width) &&
+      return x != w && thin_facet(mesh, v, w, x, fold) &&
              (mesh.point(x) - mesh.point(v)).norm() > (mesh.point(w) - mesh.point(v)).norm();
     });
     if (alone && !apex && (best < 0 || turn_deg(w) < turn_deg(best))) best = w;
@@ -122,13 +127,13 @@ int same_side_facet(const MeshTopology& mesh, int f, int v, int came, int target
 
 SharpChain trace_chain(const MeshTopology& mesh, const Vec3& seed, double feature_angle_deg, double search_radius) {
   const auto [a, b] = nearest_sharp_edge(mesh, seed, feature_angle_deg, search_radius);
-  const double fold_width = search_radius / 6;  // half the radius at the default reach factor of 3
+  const double fold = fold_width(search_radius);
   SharpChain chain;
   std::vector<int> forward{a, b};
   ChainEnd end_fwd = ChainEnd::Fade, end_bwd = ChainEnd::Fade;
   const size_t limit = size_t(mesh.num_vertices()) + 2;
   while (forward.size() < limit) {
-    const int w = next_chain_vertex(mesh, forward[forward.size() - 2], forward.back(), feature_angle_deg, fold_width, &end_fwd);
+    const int w = next_chain_vertex(mesh, forward[forward.size() - 2], forward.back(), feature_angle_deg, fold, &end_fwd);
     if (w < 0) break;
     if (w == forward.front()) {
       chain.closed = true;
@@ -140,7 +145,7 @@ SharpChain trace_chain(const MeshTopology& mesh, const Vec3& seed, double featur
   if (!chain.closed) {
     int prev = b, v = a;
     while (backward.size() < limit) {
-      const int w = next_chain_vertex(mesh, prev, v, feature_angle_deg, fold_width, &end_bwd);
+      const int w = next_chain_vertex(mesh, prev, v, feature_angle_deg, fold, &end_bwd);
       if (w < 0) break;
       backward.push_back(w);
       prev = v, v = w;
@@ -155,8 +160,7 @@ SharpChain trace_chain(const MeshTopology& mesh, const Vec3& seed, double featur
   // A chain that entered the apex of a thin facet (from the seed) takes the facet's long side instead.
   for (size_t i = 1; i + 1 < chain.vertices.size() && chain.vertices.size() > 2; ++i) {
     const int v = chain.vertices[i - 1], x = chain.vertices[i], u = chain.vertices[i + 1];
-    if (thin_facet(mesh, v, x, u, fold_width) && mesh.is_feature_edge(v, u, feature_angle_deg) &&
-        mesh.edge_facets(v, u).size() == 2)
+    if (thin_facet(mesh, v, x, u, fold) && is_sharp(mesh, v, u, feature_angle_deg))
       chain.vertices.erase(chain.vertices.begin() + long(i--));
   }
   const int n = int(chain.vertices.size());
@@ -305,14 +309,14 @@ BaseMeshes collect_base_meshes(const MeshTopology& mesh, const SharpChain& chain
   }
   // A thin facet on a chain edge holds part of the edge's fold: its other edges are folds too, not walls.
   std::unordered_set<int> fold_facets;
-  const double fold_width = reach_distance / 6;  // as trace_chain's, at the same reach
+  const double fold = fold_width(reach_distance);
   for (int i = 0; i < chain.num_edges(); ++i)
     for (int f : {chain.facet_a[i], chain.facet_b[i]}) {
       const int v = chain.vertices[i], u = chain.vertices[(i + 1) % n];
       int x = mesh.F(f, 0);
       for (int k = 0; k < 3; ++k)
         if (mesh.F(f, k) != v && mesh.F(f, k) != u) x = mesh.F(f, k);
-      if (thin_facet(mesh, v, u, x, fold_width)) fold_facets.insert(f);
+      if (thin_facet(mesh, v, u, x, fold)) fold_facets.insert(f);
     }
   for (int side = 0; side < 2; ++side) {
     std::vector<int> todo;

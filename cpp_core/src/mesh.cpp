@@ -98,18 +98,6 @@ bool MeshTopology::facet_degenerate(int f) const {
   return (pb - pa).cross(pc - pa).norm() <= 1e-12 * longest * longest;
 }
 
-namespace {
-
-double smallest_angle(const Vec3& a, const Vec3& b, const Vec3& c) {
-  auto ang = [](const Vec3& u, const Vec3& v) {
-    const double d = u.norm() * v.norm();
-    return d > 0 ? std::acos(std::clamp(u.dot(v) / d, -1.0, 1.0)) : 0.0;
-  };
-  return std::min({ang(b - a, c - a), ang(c - b, a - b), ang(a - c, b - c)});
-}
-
-}  // namespace
-
 Vec3 MeshTopology::feature_normal(int f, int a, int b, double feature_angle_deg) const {
   const Vec3 n = facet_normal(f);
   constexpr double kSliver = 10.0 * M_PI / 180.0;
@@ -141,22 +129,32 @@ int MeshTopology::edge_facet_pair(int a, int b, int pair[2]) const {
   return n;
 }
 
+double MeshTopology::dihedral_deg(int f0, int f1, const Vec3& n0, Vec3 n1, int a, int b) const {
+  // Consistently oriented neighbours run the shared edge in opposite directions.
+  if (edge_direction(f0, a, b) == edge_direction(f1, a, b)) n1 = -n1;
+  return std::acos(std::clamp(n0.dot(n1), -1.0, 1.0)) * 180.0 / M_PI;
+}
+
 double MeshTopology::dihedral_deg(int a, int b) const {
   int fs[2];
   if (edge_facet_pair(a, b, fs) != 2) return 180.0;
-  Vec3 n0 = facet_normal(fs[0]), n1 = facet_normal(fs[1]);
-  // Consistently oriented neighbours run the shared edge in opposite directions.
-  if (edge_direction(fs[0], a, b) == edge_direction(fs[1], a, b)) n1 = -n1;
-  return std::acos(std::clamp(n0.dot(n1), -1.0, 1.0)) * 180.0 / M_PI;
+  return dihedral_deg(fs[0], fs[1], facet_normal(fs[0]), facet_normal(fs[1]), a, b);
 }
 
 bool MeshTopology::is_feature_edge(int a, int b, double feature_angle_deg) const {
   int fs[2];
   if (edge_facet_pair(a, b, fs) != 2) return true;
-  if (dihedral_deg(a, b) < feature_angle_deg) return false;
-  Vec3 n0 = feature_normal(fs[0], a, b, feature_angle_deg), n1 = feature_normal(fs[1], a, b, feature_angle_deg);
-  if (edge_direction(fs[0], a, b) == edge_direction(fs[1], a, b)) n1 = -n1;
-  return std::acos(std::clamp(n0.dot(n1), -1.0, 1.0)) * 180.0 / M_PI >= feature_angle_deg;
+  if (dihedral_deg(fs[0], fs[1], facet_normal(fs[0]), facet_normal(fs[1]), a, b) < feature_angle_deg) return false;
+  return dihedral_deg(fs[0], fs[1], feature_normal(fs[0], a, b, feature_angle_deg),
+                      feature_normal(fs[1], a, b, feature_angle_deg), a, b) >= feature_angle_deg;
+}
+
+double smallest_angle(const Vec3& a, const Vec3& b, const Vec3& c) {
+  auto ang = [](const Vec3& u, const Vec3& v) {
+    const double d = u.norm() * v.norm();
+    return d > 0 ? std::acos(std::clamp(u.dot(v) / d, -1.0, 1.0)) : 0.0;
+  };
+  return std::min({ang(b - a, c - a), ang(c - b, a - b), ang(a - c, b - c)});
 }
 
 Vec3 closest_point_on_segment(const Vec3& p, const Vec3& a, const Vec3& b, double* t) {

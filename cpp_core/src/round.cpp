@@ -106,14 +106,7 @@ void check_base_meshes(const MeshTopology& mesh, const BaseMeshes& base) {
                               " near the chain is non-manifold (more than two facets share it); repair the mesh there first");
 }
 
-double smallest_angle_deg(const Vec3& a, const Vec3& b, const Vec3& c) {
-  auto ang = [](const Vec3& p, const Vec3& q, const Vec3& r) {
-    const Vec3 u = q - p, v = r - p;
-    const double d = u.norm() * v.norm();
-    return d > 0 ? std::acos(std::clamp(u.dot(v) / d, -1.0, 1.0)) * 180 / M_PI : 0.0;
-  };
-  return std::min({ang(a, b, c), ang(b, c, a), ang(c, a, b)});
-}
+double smallest_angle_deg(const Vec3& a, const Vec3& b, const Vec3& c) { return smallest_angle(a, b, c) * 180 / M_PI; }
 
 RoundedChain round_one_chain(const MeshTopology& mesh, const Vec3& seed, const RoundOptions& opt, RoundReport& report,
                              Points& V_out, Triangles& F_out) {

@@ -92,19 +92,18 @@ RoundMeshStats mesh_rounding_surface(const RoundingSurface& surface, const std::
   // profiles, e.g. where the contact jumps across a fold of a coarse mesh): no refinement along the
   // round can bring a facet on them nearer, so they do not ask for any.
   std::unordered_set<int> off_edge;
-  for (int side = 0; side < 2; ++side)
-    for (const RowPoint& p : side ? last_row : first_row)
-      if ((surface.value(p.u, side) - edit.point(p.id)).norm() > 0.5 * tolerance) off_edge.insert(p.id);
-
-  if (getenv("MESHROUND_DEBUG")) {
-    for (int side = 0; side < 2; ++side) {
+  const bool debug = getenv("MESHROUND_DEBUG") != nullptr;
+  for (int side = 0; side < 2; ++side) {
+    const auto& row = side ? last_row : first_row;
+    if (debug) {
       fprintf(stderr, "row %d:", side);
-      for (const RowPoint& p : side ? last_row : first_row) fprintf(stderr, " %d@%.4f", p.id, p.u);
+      for (const RowPoint& p : row) fprintf(stderr, " %d@%.4f", p.id, p.u);
       fprintf(stderr, "\n");
-      for (const RowPoint& p : side ? last_row : first_row) {
-        const double d = (surface.value(p.u, side) - edit.point(p.id)).norm();
-        if (d > 0.2 * tolerance) fprintf(stderr, "  trim point %d u %.4f off the surface edge by %g\n", p.id, p.u, d);
-      }
+    }
+    for (const RowPoint& p : row) {
+      const double off = (surface.value(p.u, side) - edit.point(p.id)).norm();
+      if (off > 0.5 * tolerance) off_edge.insert(p.id);
+      if (debug && off > 0.2 * tolerance) fprintf(stderr, "  trim point %d u %.4f off the surface edge by %g\n", p.id, p.u, off);
     }
   }
   // u samples of the inner rows: both trim lines merged, thinned, gaps filled.
@@ -184,14 +183,11 @@ RoundMeshStats mesh_rounding_surface(const RoundingSurface& surface, const std::
         worst = std::max(worst, distance_to_surface(surface, p, u, v));
       }
       stats.max_deviation = std::max(stats.max_deviation, worst);
-      if (worst > 0.9 * tolerance && getenv("MESHROUND_DEBUG") && round == 0)
-        fprintf(stderr, "  bad %g: u %.4f %.4f %.4f v %.3f %.3f %.3f ids %d %d %d\n", worst, tri[0].u, tri[1].u, tri[2].u,
-                tri[0].v, tri[1].v, tri[2].v, tri[0].id, tri[1].id, tri[2].id);
       const bool helpless = std::any_of(tri.begin(), tri.end(), [&](const RowPoint& p) { return p.id >= 0 && off_edge.count(p.id); });
       if (worst > 0.9 * tolerance && !helpless)
         bad.push_back({std::min({tri[0].u, tri[1].u, tri[2].u}), std::max({tri[0].u, tri[1].u, tri[2].u})});
     }
-    if (getenv("MESHROUND_DEBUG")) fprintf(stderr, "refine round %d: %zu facets, %zu bad, U %zu, max dev %g\n", round, tris.size(), bad.size(), U.size(), stats.max_deviation);
+    if (debug) fprintf(stderr, "refine round %d: %zu facets, %zu bad, U %zu, max dev %g\n", round, tris.size(), bad.size(), U.size(), stats.max_deviation);
     if (bad.empty()) break;
     std::vector<double> refined{U.front()};
     for (size_t i = 1; i < U.size(); ++i) {

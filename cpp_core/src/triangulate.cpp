@@ -10,15 +10,6 @@
 namespace meshround {
 namespace {
 
-double min_angle(const Vec3& a, const Vec3& b, const Vec3& c) {
-  auto ang = [](const Vec3& p, const Vec3& q, const Vec3& r) {
-    const Vec3 u = q - p, v = r - p;
-    const double d = u.norm() * v.norm();
-    return d > 0 ? std::acos(std::clamp(u.dot(v) / d, -1.0, 1.0)) : 0.0;
-  };
-  return std::min({ang(a, b, c), ang(b, c, a), ang(c, a, b)});
-}
-
 double cross2(const Eigen::Vector2d& o, const Eigen::Vector2d& x, const Eigen::Vector2d& y) {
   return (x - o).x() * (y - o).y() - (x - o).y() * (y - o).x();
 }
@@ -46,8 +37,8 @@ void improve_by_flips(const std::vector<Vec3>& P, const std::vector<Eigen::Vecto
         const int u = it->second.first, d = it->second.second;  // triangle u = (b, a, d)
         // Both new triangles must keep a positive area, or the flip would leave the polygon.
         if (cross2(Q[c], Q[a], Q[d]) <= 0 || cross2(Q[d], Q[b], Q[c]) <= 0) continue;
-        const double now = std::min(min_angle(P[a], P[b], P[c]), min_angle(P[b], P[a], P[d]));
-        const double then = std::min(min_angle(P[c], P[a], P[d]), min_angle(P[d], P[b], P[c]));
+        const double now = std::min(smallest_angle(P[a], P[b], P[c]), smallest_angle(P[b], P[a], P[d]));
+        const double then = std::min(smallest_angle(P[c], P[a], P[d]), smallest_angle(P[d], P[b], P[c]));
         if (then <= now + 1e-9) continue;
         tris[t] = {c, a, d}, tris[u] = {d, b, c};
         flipped = true;
@@ -58,7 +49,7 @@ void improve_by_flips(const std::vector<Vec3>& P, const std::vector<Eigen::Vecto
 
 double smallest_angle_of(const std::vector<Vec3>& P, const std::vector<std::array<int, 3>>& tris) {
   double q = INFINITY;
-  for (const auto& t : tris) q = std::min(q, min_angle(P[t[0]], P[t[1]], P[t[2]]));
+  for (const auto& t : tris) q = std::min(q, smallest_angle(P[t[0]], P[t[1]], P[t[2]]));
   return q;
 }
 
@@ -86,7 +77,7 @@ void add_inner_points(std::vector<Vec3>& P, std::vector<Eigen::Vector2d>& Q, std
     int worst = -1;
     double worst_q = quality;
     for (int t = 0; t < int(tris.size()); ++t) {
-      const double q = hopeless[t] ? INFINITY : min_angle(P[tris[t][0]], P[tris[t][1]], P[tris[t][2]]);
+      const double q = hopeless[t] ? INFINITY : smallest_angle(P[tris[t][0]], P[tris[t][1]], P[tris[t][2]]);
       if (q < worst_q) worst_q = q, worst = t;
     }
     if (worst < 0) return;
@@ -185,7 +176,7 @@ void triangulate_polygon(MeshEdit& edit, const std::vector<int>& polygon, const 
         empty = !blocks_ear(Q[w], qa, qb, qc);
       }
       if (!empty) continue;
-      const double q = min_angle(P[a], P[b], P[c]);
+      const double q = smallest_angle(P[a], P[b], P[c]);
       if (q > best_q) best_q = q, best = i;
     }
     if (best < 0) {

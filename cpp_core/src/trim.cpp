@@ -96,6 +96,19 @@ void remove_cap_corner(const MeshTopology& mesh, const BaseMeshes& base, int cor
   }
 }
 
+// Facet g of the input as a polygon, with the points that the edit put on its edges (each edge's points
+// in order from its first vertex to its second, as `points_on(p, q)` gives them).
+template <class PointsOn>
+std::vector<int> facet_with_edge_points(const MeshTopology& mesh, int g, PointsOn points_on) {
+  std::vector<int> polygon;
+  for (int k = 0; k < 3; ++k) {
+    const int p = mesh.F(g, k), q = mesh.F(g, (k + 1) % 3);
+    polygon.push_back(p);
+    points_on(p, q, polygon);
+  }
+  return polygon;
+}
+
 }  // namespace
 
 TrimLines trim_base_meshes(const MeshTopology& mesh, const SharpChain& chain, const BaseMeshes& base,
@@ -242,18 +255,17 @@ TrimLines trim_base_meshes(const MeshTopology& mesh, const SharpChain& chain, co
 
     // Input edges that lie on the trim line (both ends on it) get points every max_spacing and the kept
     // facet along them is split to match: the round's boundary row stays as dense as its inner rows.
-    std::vector<std::pair<std::uint64_t, std::vector<int>>> split;  // edge (a < b) -> its points, a to b
+    std::unordered_map<std::uint64_t, std::vector<int>> split;  // edge (a < b) -> its points, a to b
     for (int f : base.facets[side])
       for (int k = 0; k < 3; ++k) {
         int a = mesh.F(f, k), b = mesh.F(f, (k + 1) % 3);
         if (a > b) std::swap(a, b);
         const VertexSide &sa = vs[a], &sb = vs[b];
         if (sa.d != 0 || sb.d != 0) continue;
-        const std::uint64_t key = edge_key(a, b);
         const Vec3 pa = edit.point(a), pb = edit.point(b);
         const int segs = int(std::ceil((pb - pa).norm() / opt.max_spacing));
-        if (segs < 2 || std::any_of(split.begin(), split.end(), [&](const auto& e) { return e.first == key; })) continue;
-        std::vector<int> ids;
+        if (segs < 2 || split.count(edge_key(a, b))) continue;
+        std::vector<int>& ids = split[edge_key(a, b)];
         for (int i = 1; i < segs; ++i) {
           const Vec3 q = pa + (pb - pa) * (double(i) / segs);
           double u = sa.u + wrapped_delta(surface, sa.u, sb.u) * i / segs;
@@ -261,24 +273,17 @@ TrimLines trim_base_meshes(const MeshTopology& mesh, const SharpChain& chain, co
           ids.push_back(edit.add_point(q));
           out.line[side].push_back({ids.back(), u});
         }
-        split.push_back({key, ids});
       }
-    for (const auto& [key, ids] : split) {
-      const int a = int(key >> 32), b = int(key & 0xffffffffu);
-      for (int g : mesh.edge_facets(a, b)) {
-        if (edit.removed.count(g)) continue;
-        edit.removed.insert(g);
-        std::vector<int> polygon;
-        for (int k = 0; k < 3; ++k) {
-          const int p = mesh.F(g, k), q = mesh.F(g, (k + 1) % 3);
-          polygon.push_back(p);
-          if (edge_key(p, q) != key) continue;
-          if (p == a) polygon.insert(polygon.end(), ids.begin(), ids.end());
-          else polygon.insert(polygon.end(), ids.rbegin(), ids.rend());
-        }
+    for (const auto& [key, ids] : split)
+      for (int g : mesh.edge_facets(int(key >> 32), int(key & 0xffffffffu))) {
+        if (!edit.removed.insert(g).second) continue;
+        const std::vector<int> polygon = facet_with_edge_points(mesh, g, [&](int p, int q, std::vector<int>& poly) {
+          if (edge_key(p, q) != key) return;
+          if (p < q) poly.insert(poly.end(), ids.begin(), ids.end());
+          else poly.insert(poly.end(), ids.rbegin(), ids.rend());
+        });
         triangulate_polygon(edit, polygon, mesh.facet_normal(g), edit.added);
       }
-    }
   }
 
   // Capped ends: the corner of the end faces that the round replaces.
@@ -290,17 +295,13 @@ TrimLines trim_base_meshes(const MeshTopology& mesh, const SharpChain& chain, co
   }
   // Facets outside the base meshes that share a cut edge get the cut point too (no T-junctions).
   for (const auto& [key, id] : edit.edge_point) {
-    const int a = int(key >> 32), b = int(key & 0xffffffffu);
-    for (int g : mesh.edge_facets(a, b)) {
+    for (int g : mesh.edge_facets(int(key >> 32), int(key & 0xffffffffu))) {
       if (base.side_of.count(g) || edit.removed.count(g)) continue;
       edit.removed.insert(g);
-      std::vector<int> polygon;
-      for (int k = 0; k < 3; ++k) {
-        const int p = mesh.F(g, k), q = mesh.F(g, (k + 1) % 3);
-        polygon.push_back(p);
+      const std::vector<int> polygon = facet_with_edge_points(mesh, g, [&](int p, int q, std::vector<int>& poly) {
         auto it = edit.edge_point.find(edge_key(p, q));
-        if (it != edit.edge_point.end()) polygon.push_back(it->second);
-      }
+        if (it != edit.edge_point.end()) poly.push_back(it->second);
+      });
       triangulate_polygon(edit, polygon, mesh.facet_normal(g), edit.added);
     }
   }

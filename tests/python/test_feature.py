@@ -1,5 +1,6 @@
 """The parametric Rounding feature: recompute on any change, chaining, expressions, save/reload, undo/redo,
 failures (invalid feature, error on the console, document consistent), STEP export, stored proxy paths."""
+import contextlib
 import os
 import re
 import subprocess
@@ -18,6 +19,18 @@ import Spreadsheet  # noqa: F401,E402  (registers Spreadsheet::Sheet)
 
 def is_invalid(obj):
     return "Invalid" in obj.State
+
+
+@contextlib.contextmanager
+def saved_and_reopened(doc, path):
+    """Save `doc` as `path`, close it and open the file again: the reopened document (closed after)."""
+    doc.saveAs(path)
+    FreeCAD.closeDocument(doc.Name)
+    reopened = FreeCAD.openDocument(path)
+    try:
+        yield reopened
+    finally:
+        FreeCAD.closeDocument(reopened.Name)
 
 
 @pytest.fixture
@@ -113,10 +126,7 @@ def test_save_and_reload_give_the_identical_mesh(doc, rounding, tmp_path):
     path = str(tmp_path / "rounding.FCStd")
     topology = rounding.Mesh.Topology
     faces = rounding.Surfaces.Shape.Faces
-    doc.saveAs(path)
-    FreeCAD.closeDocument(doc.Name)
-    reopened = FreeCAD.openDocument(path)
-    try:
+    with saved_and_reopened(doc, path) as reopened:
         obj = reopened.getObject("Rounding")
         assert isinstance(obj.Proxy, MeshRound.objects.rounding.Rounding)
         assert obj.Mesh.Topology == topology  # stored in the file, bit for bit
@@ -125,24 +135,17 @@ def test_save_and_reload_give_the_identical_mesh(doc, rounding, tmp_path):
         reopened.recompute()
         assert not is_invalid(obj)
         assert obj.Mesh.Topology == topology  # and the engine is deterministic
-    finally:
-        FreeCAD.closeDocument(reopened.Name)
 
 
 def test_reload_adds_missing_properties(doc, rounding, tmp_path):
     """A file from an older version (a property missing) still loads and gets the property back."""
     rounding.removeProperty("Reach")
     path = str(tmp_path / "old.FCStd")
-    doc.saveAs(path)
-    FreeCAD.closeDocument(doc.Name)
-    reopened = FreeCAD.openDocument(path)
-    try:
+    with saved_and_reopened(doc, path) as reopened:
         obj = reopened.getObject("Rounding")
         assert obj.Reach == 3.0
         reopened.recompute()
         assert not is_invalid(obj), obj.getStatusString()
-    finally:
-        FreeCAD.closeDocument(reopened.Name)
 
 
 def test_undo_redo(doc, box_feature):
@@ -312,17 +315,12 @@ def test_a_failed_feature_undoes_saves_and_reloads_cleanly(doc, box_feature, rou
     doc.recompute()
     assert is_invalid(rounding) and rounding.Radius.Value == 0.0
     path = str(tmp_path / "failed.FCStd")
-    doc.saveAs(path)
-    FreeCAD.closeDocument(doc.Name)
-    reopened = FreeCAD.openDocument(path)
-    try:
+    with saved_and_reopened(doc, path) as reopened:
         obj = reopened.getObject("Rounding")
         assert obj.Radius.Value == 0.0 and obj.Mesh.Topology == good  # the last good mesh was saved
         obj.Radius = 3.0
         reopened.recompute()
         assert not is_invalid(obj), obj.getStatusString()
-    finally:
-        FreeCAD.closeDocument(reopened.Name)
 
 
 def test_failure_is_reported_on_freecads_console(tmp_path):
@@ -409,15 +407,10 @@ def test_files_with_the_old_radius_law_property_name_load(doc, rounding, tmp_pat
     rounding.RadiusLawPoints = [FreeCAD.Vector(0, 60, 40), FreeCAD.Vector(100, 60, 40)]
     rounding.RadiusLawRadii = [3.0, 6.0]
     path = str(tmp_path / "old_law.FCStd")
-    doc.saveAs(path)
-    FreeCAD.closeDocument(doc.Name)
-    reopened = FreeCAD.openDocument(path)
-    try:
+    with saved_and_reopened(doc, path) as reopened:
         obj = reopened.getObject("Rounding")
         assert "RadiusLawPoints" not in obj.PropertiesList
         assert [tuple(p) for p in obj.RadiusLaw] == [(0, 60, 40), (100, 60, 40)]
         obj.touch()
         reopened.recompute()
         assert not is_invalid(obj), obj.getStatusString()
-    finally:
-        FreeCAD.closeDocument(reopened.Name)

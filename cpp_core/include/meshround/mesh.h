@@ -51,6 +51,8 @@ class MeshTopology {
   // Angle (degrees) between the two facets of an edge, normals aligned across it; 0 = flat.
   // Returns 180 for a boundary or non-manifold edge (treated as a feature everywhere).
   double dihedral_deg(int a, int b) const;
+  // The same between the normals n0, n1 given for the edge's facets f0, f1 (aligned across it here).
+  double dihedral_deg(int f0, int f1, const Vec3& n0, Vec3 n1, int a, int b) const;
   // A sharp edge: dihedral >= the feature angle, also when a sliver facet's own normal (tilted by a tiny
   // offset of its vertices) is replaced by its neighbours' on the same face. Boundary and non-manifold
   // edges are features.
@@ -67,6 +69,8 @@ class MeshTopology {
 // (ab, bc, ca), 4..6 on vertex (a, b, c) -- the paper's facet / edge / vertex contact regions.
 Vec3 closest_point_on_triangle(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c, int* region);
 Vec3 closest_point_on_segment(const Vec3& p, const Vec3& a, const Vec3& b, double* t);
+// Smallest interior angle of triangle (a, b, c), in radians (0 for a degenerate one).
+double smallest_angle(const Vec3& a, const Vec3& b, const Vec3& c);
 
 // Uniform hash grid of axis-aligned boxes: the local searches (chain distance, closest facet) stay
 // proportional to the band, not the mesh.

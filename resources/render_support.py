@@ -1,4 +1,7 @@
-"""The camera both pictures use: orthographic, looking along a direction with z up on screen."""
+"""What both pictures' render scripts share: the camera, and running unattended under the GUI."""
+import os
+import traceback
+
 import FreeCAD
 from pivy import coin
 
@@ -19,3 +22,13 @@ def set_camera(view, direction, focus, height):
     cam.position.setValue(coin.SbVec3f(*(FreeCAD.Vector(*focus) - d * 500.0)))
     cam.focalDistance.setValue(500.0)
     cam.height.setValue(height)
+
+
+def run_unattended(main):
+    """Run main() and quit FreeCAD whatever happens: these scripts run unattended under xvfb-run."""
+    try:
+        main()
+    except Exception:  # noqa: BLE001  -- report, then quit anyway
+        traceback.print_exc()
+    finally:
+        os._exit(0)
