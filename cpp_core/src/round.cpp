@@ -129,15 +129,12 @@ RoundedChain round_one_chain(const MeshTopology& mesh, const Vec3& seed, const R
   timer.done("surface");
 
   MeshEdit edit(mesh);
-  const double spacing = 2.5 * law.max_radius() * stations.front().angle() / profile_segments(stations, tol);
-  // Cut facets and end caps get inner points for shape, but only within the reach: beyond it nothing
-  // changes.
-  const Refinement shape{20.0, [&](const Vec3& p) {
-                           double d;
-                           chain.project(p, &d);
-                           return d <= reach;
-                         }};
-  const TrimLines trim = trim_base_meshes(mesh, chain, base, surface, stations, {tol, std::max(spacing, 1e-6), shape}, edit);
+  const int segments = profile_segments(stations, tol);
+  auto spacing = [&](double u) { return std::max(kMaxStepRatio * profile_step(surface, stations, segments, u), 1e-6); };
+  // Cut facets and end caps get inner points for shape, anywhere inside them: a long facet cut by the
+  // trim line is retriangulated whole, but nothing beyond it changes.
+  const Refinement shape{20.0, {}};
+  const TrimLines trim = trim_base_meshes(mesh, chain, base, surface, stations, {tol, spacing, shape}, edit);
   timer.done("trim");
   const size_t round_begin = edit.added.size();
   const RoundMeshStats mesh_stats = mesh_rounding_surface(surface, stations, trim, tol, edit);

@@ -64,19 +64,29 @@ int profile_segments(const std::vector<ProfileStation>& stations, double toleran
   return n;
 }
 
+double profile_step(const RoundingSurface& surface, const std::vector<ProfileStation>& stations, int segments, double u) {
+  u = surface.wrap(u);
+  auto step = [&](const ProfileStation& st) { return st.radius * st.angle() / segments; };
+  auto it = std::lower_bound(stations.begin(), stations.end(), u, [](const ProfileStation& st, double x) { return st.s < x; });
+  if (it == stations.begin()) return step(stations.front());
+  if (it == stations.end()) return step(stations.back());
+  const ProfileStation &a = *(it - 1), &b = *it;
+  const double t = (u - a.s) / std::max(b.s - a.s, 1e-300);
+  return (1 - t) * step(a) + t * step(b);
+}
+
 RoundMeshStats mesh_rounding_surface(const RoundingSurface& surface, const std::vector<ProfileStation>& stations,
                                      const TrimLines& trim, double tolerance, MeshEdit& edit) {
   const int nv = profile_segments(stations, tolerance);
   const ProfileStation* widest = &stations.front();
-  double r_max = 0;
-  for (const ProfileStation& st : stations) {
+  for (const ProfileStation& st : stations)
     if (st.angle() > widest->angle()) widest = &st;
-    r_max = std::max(r_max, st.radius);
-  }
   std::vector<double> levels(nv + 1);
   for (int j = 0; j <= nv; ++j) levels[j] = j == 0 ? 0.0 : j == nv ? 1.0 : v_at_angle_fraction(surface, *widest, double(j) / nv);
-  const double h_across = r_max * widest->angle() / nv;
-  const double h_min = 0.4 * h_across, h_max = 2.5 * h_across;
+  // Steps along the round between 0.4 and 2.5 times the local step across it: facets keep their shape
+  // where a variable radius shrinks.
+  auto h_min = [&](double u) { return 0.4 * profile_step(surface, stations, nv, u); };
+  auto h_max = [&](double u) { return kMaxStepRatio * profile_step(surface, stations, nv, u); };
   const double period = surface.u_last - surface.u_first;
 
   // Trim rows, unwrapped and closed on themselves for a loop.
@@ -117,17 +127,18 @@ RoundMeshStats mesh_rounding_surface(const RoundingSurface& surface, const std::
   us.push_back(u_hi);
   std::vector<double> U{u_lo};
   for (double u : us)
-    if (u - U.back() >= h_min && u_hi - u >= h_min) U.push_back(u);
+    if (u - U.back() >= h_min(u) && u_hi - u >= h_min(u)) U.push_back(u);
   U.push_back(u_hi);
-  auto fill_gaps = [&](std::vector<double>& samples, double h) {
+  auto fill_gaps = [&](std::vector<double>& samples) {
     std::vector<double> out{samples.front()};
     for (size_t i = 1; i < samples.size(); ++i) {
-      const int n = std::max(1, int(std::ceil((samples[i] - samples[i - 1]) / h)));
+      const double gap = samples[i] - samples[i - 1];
+      const int n = std::max(1, int(std::ceil(gap / std::min(h_max(samples[i - 1]), h_max(samples[i])))));
       for (int k = 1; k <= n; ++k) out.push_back(samples[i - 1] + (samples[i] - samples[i - 1]) * k / n);
     }
     samples.swap(out);
   };
-  fill_gaps(U, h_max);
+  fill_gaps(U);
 
   std::vector<Vec3> inner;
   std::vector<std::array<RowPoint, 3>> tris;
@@ -192,7 +203,7 @@ RoundMeshStats mesh_rounding_surface(const RoundingSurface& surface, const std::
     std::vector<double> refined{U.front()};
     for (size_t i = 1; i < U.size(); ++i) {
       const double a = U[i - 1], b = U[i];
-      const bool split = (b - a) > 1e-3 * h_min &&
+      const bool split = (b - a) > 1e-3 * h_min(a) &&
                          std::any_of(bad.begin(), bad.end(), [&](auto& r) { return r.first < b && r.second > a; });
       if (split) refined.push_back(0.5 * (a + b));
       refined.push_back(b);

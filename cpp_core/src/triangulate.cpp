@@ -3,6 +3,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <functional>
+#include <set>
 #include <unordered_map>
 
 #include "meshround/mesh_edit.h"
@@ -53,6 +54,18 @@ double smallest_angle_of(const std::vector<Vec3>& P, const std::vector<std::arra
   return q;
 }
 
+// The smallest angle of the triangles in `now` that were not in `before` (as sets of corners).
+double smallest_made_angle(const std::vector<Vec3>& P, const std::vector<std::array<int, 3>>& before,
+                           const std::vector<std::array<int, 3>>& now) {
+  auto sorted = [](std::array<int, 3> t) { std::sort(t.begin(), t.end()); return t; };
+  std::set<std::array<int, 3>> old;
+  for (const auto& t : before) old.insert(sorted(t));
+  double q = INFINITY;
+  for (const auto& t : now)
+    if (!old.count(sorted(t))) q = std::min(q, smallest_angle(P[t[0]], P[t[1]], P[t[2]]));
+  return q;
+}
+
 bool inside_polygon(const Eigen::Vector2d& p, const std::vector<Eigen::Vector2d>& Q, size_t boundary) {
   bool in = false;
   for (size_t i = 0, j = boundary - 1; i < boundary; j = i++)
@@ -62,69 +75,101 @@ bool inside_polygon(const Eigen::Vector2d& p, const std::vector<Eigen::Vector2d>
   return in;
 }
 
-// Delaunay refinement that never splits the polygon's sides (they are shared with neighbours): the
-// circumcentre of the worst triangle, or else the apex of an equilateral triangle on its shortest side,
-// goes in when it lies inside, at least half its spacing from every side and vertex, and where the
-// caller admits points; flips then restore the best triangulation. A point after which some triangle is
-// worse than the one it was meant to mend is taken out again.
+// Where a point meant to mend triangle `w` may go, best first, each with the spacing it should keep from
+// the polygon's sides and vertices: the circumcentre, then apexes on each side of the triangle (longest
+// first) of isosceles triangles with base angles from 60 down to 12 degrees. The second kind mends thin
+// triangles along a long side of the polygon, whose circumcentres lie outside it.
+std::vector<std::pair<Eigen::Vector2d, double>> mending_points(const std::vector<Eigen::Vector2d>& Q,
+                                                               const std::array<int, 3>& w) {
+  std::vector<std::pair<Eigen::Vector2d, double>> out;
+  const Eigen::Vector2d a = Q[w[0]], ba = Q[w[1]] - a, ca = Q[w[2]] - a;
+  const double d = 2 * (ba.x() * ca.y() - ba.y() * ca.x());
+  if (d > 0) {
+    const Eigen::Vector2d centre = a + Eigen::Vector2d(ca.y() * ba.squaredNorm() - ba.y() * ca.squaredNorm(),
+                                                       ba.x() * ca.squaredNorm() - ca.x() * ba.squaredNorm()) / d;
+    out.emplace_back(centre, (centre - a).norm());
+  }
+  std::array<int, 3> sides{0, 1, 2};
+  auto length = [&](int k) { return (Q[w[(k + 1) % 3]] - Q[w[k]]).norm(); };
+  std::sort(sides.begin(), sides.end(), [&](int i, int j) { return length(i) > length(j); });
+  for (double height : {0.866, 0.289, 0.182, 0.106})  // base angles 60, 30, 20, 12 degrees
+    for (int k : sides) {
+      const Eigen::Vector2d s0 = Q[w[k]], s1 = Q[w[(k + 1) % 3]];
+      // The triangle is counter-clockwise: its inside is left of each side.
+      out.emplace_back(0.5 * (s0 + s1) + height * Eigen::Vector2d(-(s1 - s0).y(), (s1 - s0).x()),
+                       height * (s1 - s0).norm());
+    }
+  return out;
+}
+
+// Delaunay refinement that never splits the polygon's sides (they are shared with neighbours): for the
+// worst triangle, the first of its mending points that lies inside, clear of the sides and vertices,
+// where the caller admits points, and after which (with flips) no triangle made is worse than the one
+// mended, goes in. A point too near a side is first pushed straight away from it.
 // New points follow the polygon's own in P / Q.
 void add_inner_points(std::vector<Vec3>& P, std::vector<Eigen::Vector2d>& Q, std::vector<std::array<int, 3>>& tris,
                       size_t boundary, const Refinement& refine, const Vec3& e1, const Vec3& e2) {
   const double quality = refine.quality_deg * M_PI / 180;
   auto to_3d = [&](const Eigen::Vector2d& x) { return Vec3(P[0] + (x.x() - Q[0].x()) * e1 + (x.y() - Q[0].y()) * e2); };
-  std::vector<char> hopeless(tris.size(), 0);
-  for (size_t added = 0; added < 4 * boundary + 16;) {
-    int worst = -1;
-    double worst_q = quality;
-    for (int t = 0; t < int(tris.size()); ++t) {
-      const double q = hopeless[t] ? INFINITY : smallest_angle(P[tris[t][0]], P[tris[t][1]], P[tris[t][2]]);
-      if (q < worst_q) worst_q = q, worst = t;
-    }
-    if (worst < 0) return;
-    const auto& w = tris[worst];
-    const Eigen::Vector2d a = Q[w[0]], ba = Q[w[1]] - a, ca = Q[w[2]] - a;
-    const double d = 2 * (ba.x() * ca.y() - ba.y() * ca.x());
-    auto host_of = [&](const Eigen::Vector2d& x, double spacing) {  // -1: not a good place
-      if (!inside_polygon(x, Q, boundary)) return -1;
+  auto host_of = [&](Eigen::Vector2d& x, double spacing) {  // -1: not a good place
+    if (!inside_polygon(x, Q, boundary)) return -1;
+    for (int round = 0;; ++round) {  // a few times over, for a corner
+      bool pushed = false;
       for (size_t i = 0; i < boundary; ++i) {
         const Eigen::Vector2d &p = Q[i], &q = Q[(i + 1) % boundary];
         const double t = std::clamp((x - p).dot(q - p) / std::max((q - p).squaredNorm(), 1e-300), 0.0, 1.0);
-        if ((x - (p + t * (q - p))).norm() <= 0.5 * spacing) return -1;
+        if (t <= 0 || t >= 1 || (x - (p + t * (q - p))).norm() > 0.5 * spacing) continue;  // ends: see below
+        if (round == 4) return -1;
+        x = p + t * (q - p) + 0.5001 * spacing * Eigen::Vector2d(-(q - p).y(), (q - p).x()).normalized();
+        pushed = true;
       }
-      for (const auto& q : Q)
-        if ((q - x).norm() <= 0.5 * spacing) return -1;
-      if (refine.admit && !refine.admit(to_3d(x))) return -1;
-      for (int t = 0; t < int(tris.size()); ++t) {
-        const auto &p = Q[tris[t][0]], &q = Q[tris[t][1]], &r = Q[tris[t][2]];
-        if (cross2(p, q, x) >= 0 && cross2(q, r, x) >= 0 && cross2(r, p, x) >= 0) return t;
+      if (!pushed) break;
+      if (!inside_polygon(x, Q, boundary)) return -1;
+    }
+    for (const auto& q : Q)
+      if ((q - x).norm() <= 0.25 * spacing) return -1;
+    if (refine.admit && !refine.admit(to_3d(x))) return -1;
+    for (int t = 0; t < int(tris.size()); ++t) {
+      const auto &p = Q[tris[t][0]], &q = Q[tris[t][1]], &r = Q[tris[t][2]];
+      if (cross2(p, q, x) >= 0 && cross2(q, r, x) >= 0 && cross2(r, p, x) >= 0) return t;
+    }
+    return -1;
+  };
+  std::vector<char> hopeless(tris.size(), 0);
+  for (size_t added = 0; added < 4 * boundary + 16;) {
+    // The largest bad triangle first: its mending point lands deep inside and later ones grade towards
+    // the short sides (the worst first would pile points up at the trim line).
+    int worst = -1;
+    double worst_q = quality, worst_size = 0;
+    for (int t = 0; t < int(tris.size()); ++t) {
+      if (hopeless[t]) continue;
+      const double q = smallest_angle(P[tris[t][0]], P[tris[t][1]], P[tris[t][2]]);
+      if (q >= quality) continue;
+      const auto &a = Q[tris[t][0]], &b = Q[tris[t][1]], &c = Q[tris[t][2]];
+      const double size = std::max({(b - a).norm(), (c - b).norm(), (a - c).norm()});
+      if (size > worst_size) worst_size = size, worst_q = q, worst = t;
+    }
+    if (worst < 0) return;
+    bool mended = false;
+    const auto& w = tris[worst];
+    for (auto [x, spacing] : mending_points(Q, tris[worst])) {
+      const int host = host_of(x, spacing);
+      if (host < 0) continue;
+      const int k = int(P.size());
+      const std::vector<std::array<int, 3>> before = tris;
+      Q.push_back(x), P.push_back(to_3d(x));
+      const auto h = tris[host];
+      tris[host] = {h[0], h[1], k};
+      tris.push_back({h[1], h[2], k});
+      tris.push_back({h[2], h[0], k});
+      improve_by_flips(P, Q, tris);
+      if (smallest_made_angle(P, before, tris) > worst_q + 1e-9) {
+        mended = true;
+        break;
       }
-      return -1;
-    };
-    Eigen::Vector2d centre = a + Eigen::Vector2d(ca.y() * ba.squaredNorm() - ba.y() * ca.squaredNorm(),
-                                                 ba.x() * ca.squaredNorm() - ca.x() * ba.squaredNorm()) / d;
-    int host = d > 0 ? host_of(centre, (centre - a).norm()) : -1;
-    if (host < 0) {  // else the apex of an equilateral triangle on the shortest side (an off-centre)
-      int k0 = 0;
-      for (int k = 1; k < 3; ++k)
-        if ((Q[w[(k + 1) % 3]] - Q[w[k]]).norm() < (Q[w[(k0 + 1) % 3]] - Q[w[k0]]).norm()) k0 = k;
-      const Eigen::Vector2d s0 = Q[w[k0]], s1 = Q[w[(k0 + 1) % 3]];
-      centre = 0.5 * (s0 + s1) + 0.866 * Eigen::Vector2d(-(s1 - s0).y(), (s1 - s0).x());
-      host = host_of(centre, 0.866 * (s1 - s0).norm());
+      tris = before, P.pop_back(), Q.pop_back();  // it made a triangle as bad: take it back
     }
-    if (host < 0) {
-      hopeless[worst] = 1;
-      continue;
-    }
-    const int k = int(P.size());
-    const std::vector<std::array<int, 3>> before = tris;
-    Q.push_back(centre), P.push_back(to_3d(centre));
-    const auto h = tris[host];
-    tris[host] = {h[0], h[1], k};
-    tris.push_back({h[1], h[2], k});
-    tris.push_back({h[2], h[0], k});
-    improve_by_flips(P, Q, tris);
-    if (smallest_angle_of(P, tris) < worst_q - 1e-12) {  // it made a worse triangle elsewhere: take it back
-      tris = before, P.pop_back(), Q.pop_back();
+    if (!mended) {
       hopeless[worst] = 1;
       continue;
     }

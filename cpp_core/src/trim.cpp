@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <unordered_set>
 
 namespace meshround {
 namespace {
@@ -172,6 +173,17 @@ TrimLines trim_base_meshes(const MeshTopology& mesh, const SharpChain& chain, co
         if (s.d == 0) out.line[side].push_back({v, s.u});
       }
 
+    // The kept piece of a long edge from the trim line gets points whose spacing grows from the trim
+    // line's by half again each step: the facets on both sides of it can then grade from the fine trim
+    // line to their far corners instead of fanning out in slivers.
+    auto grade_piece = [&](int trim_end, int kept_end, double u) {
+      MeshEdit::KeptPiece& piece = edit.kept_piece[edge_key(trim_end, kept_end)];
+      piece.trim_end = trim_end, piece.kept_end = kept_end;
+      const Vec3 x = edit.point(trim_end), y = edit.point(kept_end);
+      const double length = (y - x).norm(), start = opt.max_spacing(u);
+      for (double at = start, step = start; length - at > 1.5 * step; at += step)
+        piece.points.push_back(edit.add_point(x + (y - x) * (at / length))), step *= 1.5;
+    };
     // Cut points on the edges that cross the line.
     auto cut_point = [&](int a, int b) -> int {
       const std::uint64_t key = edge_key(a, b);
@@ -199,9 +211,42 @@ TrimLines trim_base_meshes(const MeshTopology& mesh, const SharpChain& chain, co
       edit.edge_point[key] = id;
       cut_u[id] = u;
       out.line[side].push_back({id, u});
+      grade_piece(id, b, u);
       return id;
     };
 
+    // The points on the kept piece of a cut edge, when a polygon runs along it from `from` to `to`.
+    auto add_piece_points = [&](int from, int to, std::vector<int>& polygon) {
+      auto it = edit.kept_piece.find(edge_key(from, to));
+      if (it == edit.kept_piece.end()) return;
+      const auto& points = it->second.points;
+      if (it->second.trim_end == from) polygon.insert(polygon.end(), points.begin(), points.end());
+      else polygon.insert(polygon.end(), points.rbegin(), points.rend());
+    };
+    // Input edges of cut facets from a vertex on the line to a kept one are graded as well; a kept
+    // facet on the other side of one is retriangulated with the points (below).
+    std::unordered_set<int> cut_facets, rebuild;
+    for (int f : base.facets[side]) {
+      int in = 0, beyond = 0;
+      for (int k = 0; k < 3; ++k) in += vs[mesh.F(f, k)].d < 0, beyond += vs[mesh.F(f, k)].d > 0;
+      if (in > 0 && beyond > 0) cut_facets.insert(f);
+    }
+    auto kept_whole = [&](int g) {
+      auto it = base.side_of.find(g);
+      return it != base.side_of.end() && it->second == side &&
+             std::all_of(&mesh.F(g, 0), &mesh.F(g, 0) + 3, [&](int v) { return vs[v].d >= 0; });
+    };
+    for (int f : cut_facets)
+      for (int k = 0; k < 3; ++k) {
+        const int a = mesh.F(f, k), b = mesh.F(f, (k + 1) % 3);
+        if (!((vs[a].d == 0 && vs[b].d > 0) || (vs[b].d == 0 && vs[a].d > 0)) || edit.kept_piece.count(edge_key(a, b))) continue;
+        const std::vector<int> pair = mesh.edge_facets(a, b);
+        if (pair.size() != 2 || !std::all_of(pair.begin(), pair.end(), [&](int g) { return cut_facets.count(g) || kept_whole(g); }))
+          continue;
+        vs[a].d == 0 ? grade_piece(a, b, vs[a].u) : grade_piece(b, a, vs[b].u);
+        for (int g : pair)
+          if (!cut_facets.count(g)) rebuild.insert(g);
+      }
     for (int f : base.facets[side]) {
       int in = 0, outside = 0;
       for (int k = 0; k < 3; ++k) (vs[mesh.F(f, k)].d < 0 ? in : outside) += 1;
@@ -231,6 +276,7 @@ TrimLines trim_base_meshes(const MeshTopology& mesh, const SharpChain& chain, co
       std::vector<int> polygon;
       for (size_t i = 0; i < ring.size(); ++i) {
         const Item& prev = ring[(i + ring.size() - 1) % ring.size()];
+        if (!band_before[i]) add_piece_points(prev.vertex, ring[i].vertex, polygon);
         if (band_before[i] && prev.trim && ring[i].trim) {
           // Extra points where the contact line bends or runs long inside this facet.
           const Vec3 x1 = edit.point(prev.vertex), x2 = edit.point(ring[i].vertex);
@@ -239,7 +285,7 @@ TrimLines trim_base_meshes(const MeshTopology& mesh, const SharpChain& chain, co
           const Vec3 mid = on_facet(prev.u + 0.5 * du);
           double t;
           const double sag = (closest_point_on_segment(mid, x1, x2, &t) - mid).norm();
-          int segs = std::max(1, int(std::ceil((x2 - x1).norm() / opt.max_spacing)));
+          int segs = std::max(1, int(std::ceil((x2 - x1).norm() / opt.max_spacing(prev.u + 0.5 * du))));
           segs = std::max(segs, int(std::ceil(std::sqrt(sag / (0.25 * opt.tolerance)))));
           for (int s = 1; s < segs; ++s) {
             const double u = surface.wrap(prev.u + du * s / segs);
@@ -255,6 +301,7 @@ TrimLines trim_base_meshes(const MeshTopology& mesh, const SharpChain& chain, co
 
     // Input edges that lie on the trim line (both ends on it) get points every max_spacing and the kept
     // facet along them is split to match: the round's boundary row stays as dense as its inner rows.
+    // Kept facets with graded pieces are retriangulated here too.
     std::unordered_map<std::uint64_t, std::vector<int>> split;  // edge (a < b) -> its points, a to b
     for (int f : base.facets[side])
       for (int k = 0; k < 3; ++k) {
@@ -263,7 +310,7 @@ TrimLines trim_base_meshes(const MeshTopology& mesh, const SharpChain& chain, co
         const VertexSide &sa = vs[a], &sb = vs[b];
         if (sa.d != 0 || sb.d != 0) continue;
         const Vec3 pa = edit.point(a), pb = edit.point(b);
-        const int segs = int(std::ceil((pb - pa).norm() / opt.max_spacing));
+        const int segs = int(std::ceil((pb - pa).norm() / opt.max_spacing(sa.u + 0.5 * wrapped_delta(surface, sa.u, sb.u))));
         if (segs < 2 || split.count(edge_key(a, b))) continue;
         std::vector<int>& ids = split[edge_key(a, b)];
         for (int i = 1; i < segs; ++i) {
@@ -275,15 +322,17 @@ TrimLines trim_base_meshes(const MeshTopology& mesh, const SharpChain& chain, co
         }
       }
     for (const auto& [key, ids] : split)
-      for (int g : mesh.edge_facets(int(key >> 32), int(key & 0xffffffffu))) {
-        if (!edit.removed.insert(g).second) continue;
-        const std::vector<int> polygon = facet_with_edge_points(mesh, g, [&](int p, int q, std::vector<int>& poly) {
-          if (edge_key(p, q) != key) return;
-          if (p < q) poly.insert(poly.end(), ids.begin(), ids.end());
-          else poly.insert(poly.end(), ids.rbegin(), ids.rend());
-        });
-        triangulate_polygon(edit, polygon, mesh.facet_normal(g), edit.added);
-      }
+      for (int g : mesh.edge_facets(int(key >> 32), int(key & 0xffffffffu))) rebuild.insert(g);
+    for (int g : rebuild) {
+      if (!edit.removed.insert(g).second) continue;  // in the band
+      const std::vector<int> polygon = facet_with_edge_points(mesh, g, [&](int p, int q, std::vector<int>& poly) {
+        auto it = split.find(edge_key(p, q));
+        if (it == split.end()) add_piece_points(p, q, poly);
+        else if (p < q) poly.insert(poly.end(), it->second.begin(), it->second.end());
+        else poly.insert(poly.end(), it->second.rbegin(), it->second.rend());
+      });
+      triangulate_polygon(edit, polygon, mesh.facet_normal(g), edit.added, opt.shape);
+    }
   }
 
   // Capped ends: the corner of the end faces that the round replaces.
@@ -300,7 +349,15 @@ TrimLines trim_base_meshes(const MeshTopology& mesh, const SharpChain& chain, co
       edit.removed.insert(g);
       const std::vector<int> polygon = facet_with_edge_points(mesh, g, [&](int p, int q, std::vector<int>& poly) {
         auto it = edit.edge_point.find(edge_key(p, q));
-        if (it != edit.edge_point.end()) poly.push_back(it->second);
+        if (it == edit.edge_point.end()) return;
+        const int x = it->second;
+        auto piece = edit.kept_piece.find(edge_key(x, p));  // the piece towards p, or else towards q
+        const bool towards_p = piece != edit.kept_piece.end();
+        if (!towards_p) piece = edit.kept_piece.find(edge_key(x, q));
+        const auto& points = piece->second.points;  // from x outwards
+        if (towards_p) poly.insert(poly.end(), points.rbegin(), points.rend());
+        poly.push_back(x);
+        if (!towards_p) poly.insert(poly.end(), points.begin(), points.end());
       });
       triangulate_polygon(edit, polygon, mesh.facet_normal(g), edit.added);
     }

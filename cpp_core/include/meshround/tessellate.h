@@ -24,4 +24,9 @@ RoundMeshStats mesh_rounding_surface(const RoundingSurface& surface, const std::
 // Spacing across the profile (and the largest step along it) for a tolerance: the v levels' count.
 int profile_segments(const std::vector<ProfileStation>& stations, double tolerance);
 
+// The step across the profile at u (local radius x opening angle / segments, interpolated between the
+// stations); steps along the round and its trim lines are at most kMaxStepRatio times this.
+double profile_step(const RoundingSurface& surface, const std::vector<ProfileStation>& stations, int segments, double u);
+constexpr double kMaxStepRatio = 2.5;
+
 }  // namespace meshround

@@ -7,6 +7,7 @@
 // surface's edge to the tolerance. At the ends of an open chain the facets of the end faces that the
 // round cuts into are taken out too; their gaps are closed by the sewing pass.
 #pragma once
+#include <functional>
 #include <vector>
 
 #include "meshround/chain.h"
@@ -28,7 +29,7 @@ struct TrimLines {
 
 struct TrimOptions {
   double tolerance;     // chordal tolerance: how closely a trim line follows the surface's edge
-  double max_spacing;   // longest step along a trim line (keeps the new facets well shaped)
+  std::function<double(double u)> max_spacing;  // longest step along a trim line at u (keeps facets well shaped)
   Refinement shape;     // inner points for the kept parts of cut facets (where they may go)
 };
 
