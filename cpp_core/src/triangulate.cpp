@@ -151,7 +151,6 @@ void add_inner_points(std::vector<Vec3>& P, std::vector<Eigen::Vector2d>& Q, std
     }
     if (worst < 0) return;
     bool mended = false;
-    const auto& w = tris[worst];
     for (auto [x, spacing] : mending_points(Q, tris[worst])) {
       const int host = host_of(x, spacing);
       if (host < 0) continue;
@@ -175,6 +174,53 @@ void add_inner_points(std::vector<Vec3>& P, std::vector<Eigen::Vector2d>& Q, std
     }
     hopeless.assign(tris.size(), 0);
     ++added;
+  }
+}
+
+// Inner points (never the polygon's own) move where the smallest angle around them is largest: towards
+// the centre of their neighbours, or a step in one of eight directions; a few sweeps over, each followed
+// by flips.
+void smooth_inner_points(std::vector<Vec3>& P, std::vector<Eigen::Vector2d>& Q, std::vector<std::array<int, 3>>& tris,
+                         size_t boundary, const Vec3& e1, const Vec3& e2) {
+  auto to_3d = [&](const Eigen::Vector2d& x) { return Vec3(P[0] + (x.x() - Q[0].x()) * e1 + (x.y() - Q[0].y()) * e2); };
+  for (int sweep = 0; sweep < 16; ++sweep) {
+    bool moved = false;
+    for (size_t k = boundary; k < Q.size(); ++k) {
+      std::vector<int> star;
+      Eigen::Vector2d centre = Eigen::Vector2d::Zero();
+      for (int t = 0; t < int(tris.size()); ++t)
+        for (int c = 0; c < 3; ++c)
+          if (tris[t][c] == int(k)) star.push_back(t), centre += Q[tris[t][(c + 1) % 3]] + Q[tris[t][(c + 2) % 3]];
+      if (star.empty()) continue;
+      centre /= 2.0 * star.size();  // each neighbour is counted twice around an inner point
+      auto star_quality = [&]() {
+        double q = INFINITY;
+        for (int t : star) {
+          const auto& w = tris[t];
+          if (cross2(Q[w[0]], Q[w[1]], Q[w[2]]) <= 0) return -1.0;
+          q = std::min(q, smallest_angle(P[w[0]], P[w[1]], P[w[2]]));
+        }
+        return q;
+      };
+      double best = star_quality();
+      Eigen::Vector2d best_q = Q[k];
+      std::vector<Eigen::Vector2d> tries;
+      for (double step : {1.0, 0.5, 0.25}) tries.push_back(Q[k] + step * (centre - Q[k]));
+      double reach = INFINITY;  // then a compass search, in steps of the star's size
+      for (int t : star)
+        for (int c = 0; c < 3; ++c)
+          if (tris[t][c] != int(k)) reach = std::min(reach, (Q[tris[t][c]] - Q[k]).norm());
+      for (double step : {0.2 * reach, 0.05 * reach})
+        for (int d = 0; d < 8; ++d) tries.push_back(Q[k] + step * Eigen::Vector2d(std::cos(d * M_PI / 4), std::sin(d * M_PI / 4)));
+      for (const Eigen::Vector2d& x : tries) {
+        Q[k] = x, P[k] = to_3d(x);
+        const double q = star_quality();
+        if (q > best + 1e-9) best = q, best_q = x, moved = true;
+      }
+      Q[k] = best_q, P[k] = to_3d(best_q);
+    }
+    if (!moved) return;
+    improve_by_flips(P, Q, tris);
   }
 }
 
@@ -243,7 +289,10 @@ void triangulate_polygon(MeshEdit& edit, const std::vector<int>& polygon, const 
     double size = 0, off = 0;
     for (size_t i = 0; i < boundary; ++i) size = std::max(size, (P[i] - P[0]).norm());
     for (size_t i = 0; i < boundary; ++i) off = std::max(off, std::abs((P[i] - P[0]).dot(n)));
-    if (off <= 1e-9 * size) add_inner_points(P, Q, tris, boundary, refine, e1, e2);
+    if (off <= 1e-9 * size) {
+      add_inner_points(P, Q, tris, boundary, refine, e1, e2);
+      smooth_inner_points(P, Q, tris, boundary, e1, e2);
+    }
   }
   ring.resize(P.size(), -1);
   for (size_t i = boundary; i < P.size(); ++i) ring[i] = edit.add_point(P[i]);

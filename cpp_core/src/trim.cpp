@@ -156,7 +156,8 @@ TrimLines trim_base_meshes(const MeshTopology& mesh, const SharpChain& chain, co
         // A vertex very near the line moves onto it (when that does not change the surface): no slivers.
         else if (std::abs(s.d) > 0 && !edit.moved.count(v)) {
           double shortest = INFINITY;
-          for (int w : mesh.vertex_neighbours(v)) shortest = std::min(shortest, (mesh.point(w) - mesh.point(v)).norm());
+          for (int w : mesh.vertex_neighbours(v))  // (facets on the chain go with the band: their shape is moot)
+            if (!chain_vertices.count(w)) shortest = std::min(shortest, (mesh.point(w) - mesh.point(v)).norm());
           if (std::abs(s.d) < 0.2 * shortest) {
             const Vec3 q = mesh.point(v) - s.d * away;
             bool flat = true;
@@ -223,8 +224,9 @@ TrimLines trim_base_meshes(const MeshTopology& mesh, const SharpChain& chain, co
       if (it->second.trim_end == from) polygon.insert(polygon.end(), points.begin(), points.end());
       else polygon.insert(polygon.end(), points.rbegin(), points.rend());
     };
-    // Input edges of cut facets from a vertex on the line to a kept one are graded as well; a kept
-    // facet on the other side of one is retriangulated with the points (below).
+    // Input edges from a vertex on the line to a kept one are graded as well when both their facets are
+    // cut or kept whole (all around such a vertex, so that no acute corner has points on one side
+    // only); kept facets with graded edges are retriangulated with the points (below).
     std::unordered_set<int> cut_facets, rebuild;
     for (int f : base.facets[side]) {
       int in = 0, beyond = 0;
@@ -236,7 +238,7 @@ TrimLines trim_base_meshes(const MeshTopology& mesh, const SharpChain& chain, co
       return it != base.side_of.end() && it->second == side &&
              std::all_of(&mesh.F(g, 0), &mesh.F(g, 0) + 3, [&](int v) { return vs[v].d >= 0; });
     };
-    for (int f : cut_facets)
+    for (int f : base.facets[side])
       for (int k = 0; k < 3; ++k) {
         const int a = mesh.F(f, k), b = mesh.F(f, (k + 1) % 3);
         if (!((vs[a].d == 0 && vs[b].d > 0) || (vs[b].d == 0 && vs[a].d > 0)) || edit.kept_piece.count(edge_key(a, b))) continue;

@@ -42,7 +42,7 @@ KNOWN_FAULTS = {
     "topology": {("s_chain", "coarse"), ("s_chain_var3", "coarse")},
     "locality": set(),
     "smoothness": {("s_chain", "coarse"), ("s_chain_var3", "coarse")},
-    "quality": {("draft_shoulder", "cad"), ("box_var", "coarse"), ("lchannel_var", "cad")},
+    "quality": set(),
 }
 
 
