@@ -73,7 +73,9 @@ std::vector<ProfileStation> sample_profiles(const SpineContext& ctx, const Radiu
     const double s = chain.closed ? L * i / n0 : L * i / (n0 - 1);
     st.push_back(station(ctx, law, s));
   }
-  const double min_step = 1e-4 * L;
+  // Stations closer than a quarter radius are not resolved further: where a coarse mesh's crease makes
+  // the contact jump (the ball pivots about one centre), a finer spacing only makes the loft ring.
+  const double min_step = std::max(1e-4 * L, 0.25 * law.min_radius());
   for (int round = 0; round < 12; ++round) {
     surface = loft_profiles(st, chain.closed, L);
     std::vector<ProfileStation> extra;

@@ -53,6 +53,32 @@ double distance_to_surface(const RoundingSurface& s, const Vec3& p, double u, do
   return best;
 }
 
+// Offsets of the trim points from the surface's edges, interpolated along u and faded across v.
+class EdgeOffsets {
+ public:
+  EdgeOffsets(const RoundingSurface& surface, const std::vector<RowPoint>& first, const std::vector<RowPoint>& last,
+              const MeshEdit& edit) {
+    for (int side = 0; side < 2; ++side)
+      for (const RowPoint& p : side ? last : first)
+        rows_[side].push_back({p.u, edit.point(p.id) - surface.value(p.u, side)});
+  }
+  // The offset at (u, v): full at the trim lines, none from the middle of the profile on.
+  Vec3 at(double u, double v) const { return fade(v) * along(0, u) + fade(1 - v) * along(1, u); }
+
+ private:
+  static double fade(double v) { return v >= 0.5 ? 0.0 : (1 - 2 * v) * (1 - 2 * v); }
+  Vec3 along(int side, double u) const {  // rows are sorted by (unwrapped) u
+    const auto& row = rows_[side];
+    auto it = std::lower_bound(row.begin(), row.end(), u, [](const std::pair<double, Vec3>& x, double y) { return x.first < y; });
+    if (it == row.begin()) return row.front().second;
+    if (it == row.end()) return row.back().second;
+    const auto &a = *(it - 1), &b = *it;
+    const double t = (u - a.first) / std::max(b.first - a.first, 1e-300);
+    return (1 - t) * a.second + t * b.second;
+  }
+  std::vector<std::pair<double, Vec3>> rows_[2];
+};
+
 }  // namespace
 
 int profile_segments(const std::vector<ProfileStation>& stations, double tolerance) {
@@ -98,24 +124,18 @@ RoundMeshStats mesh_rounding_surface(const RoundingSurface& surface, const std::
     if (surface.closed) row.push_back({row.front().id, row.front().u + period, double(side)});
   }
 
-  // Trim points that lie off the surface's edge (the base mesh leaves the lofted edge between two
-  // profiles, e.g. where the contact jumps across a fold of a coarse mesh): no refinement along the
-  // round can bring a facet on them nearer, so they do not ask for any.
-  std::unordered_set<int> off_edge;
+  // Where the base mesh leaves the lofted edge between two profiles (a coarse mesh's creases and tilted
+  // facets), the trim points lie off the surface's edge. The inner rows follow them: each is moved by the
+  // trim lines' offsets from the edge, fading out towards the middle of the profile, so that rows never
+  // cross near a trim line. Facets are measured against this target, the report against the surface.
+  const EdgeOffsets offsets(surface, first_row, last_row, edit);
   const bool debug = getenv("MESHROUND_DEBUG") != nullptr;
-  for (int side = 0; side < 2; ++side) {
-    const auto& row = side ? last_row : first_row;
-    if (debug) {
+  if (debug)
+    for (int side = 0; side < 2; ++side) {
       fprintf(stderr, "row %d:", side);
-      for (const RowPoint& p : row) fprintf(stderr, " %d@%.4f", p.id, p.u);
+      for (const RowPoint& p : side ? last_row : first_row) fprintf(stderr, " %d@%.4f", p.id, p.u);
       fprintf(stderr, "\n");
     }
-    for (const RowPoint& p : row) {
-      const double off = (surface.value(p.u, side) - edit.point(p.id)).norm();
-      if (off > 0.5 * tolerance) off_edge.insert(p.id);
-      if (debug && off > 0.2 * tolerance) fprintf(stderr, "  trim point %d u %.4f off the surface edge by %g\n", p.id, p.u, off);
-    }
-  }
   // u samples of the inner rows: both trim lines merged, thinned, gaps filled.
   std::vector<double> us;
   for (const auto* row : {&first_row, &last_row})
@@ -155,7 +175,7 @@ RoundMeshStats mesh_rounding_surface(const RoundingSurface& surface, const std::
           row.push_back({row.front().id, U[i], levels[j]});
           break;
         }
-        inner.push_back(surface.value(U[i], levels[j]));
+        inner.push_back(surface.value(U[i], levels[j]) + offsets.at(U[i], levels[j]));
         row.push_back({-int(inner.size()), U[i], levels[j]});
       }
       rows.push_back(row);
@@ -178,7 +198,7 @@ RoundMeshStats mesh_rounding_surface(const RoundingSurface& surface, const std::
     std::vector<std::pair<double, double>> bad;
     stats.max_deviation = 0;
     for (const auto& tri : tris) {
-      double worst = 0;
+      double worst = 0, from_surface = 0;
       for (int e = 0; e < 4; ++e) {  // centroid, then the three edge midpoints
         const RowPoint* a = &tri[e == 0 ? 0 : e - 1];
         const RowPoint* b2 = &tri[e == 0 ? 1 : e % 3];
@@ -191,11 +211,14 @@ RoundMeshStats mesh_rounding_surface(const RoundingSurface& surface, const std::
           p = 0.5 * (position(*a) + position(*b2));
           u = 0.5 * (a->u + b2->u), v = 0.5 * (a->v + b2->v);
         }
-        worst = std::max(worst, distance_to_surface(surface, p, u, v));
+        from_surface = std::max(from_surface, distance_to_surface(surface, p, u, v));
+        // A piece of the trim line stays as trimmed (its points were placed by the trim pass for the
+        // tolerance): refining the rows cannot bring it nearer.
+        if (e > 0 && a->id >= 0 && b2->id >= 0) continue;
+        worst = std::max(worst, distance_to_surface(surface, p - offsets.at(u, v), u, v));
       }
-      stats.max_deviation = std::max(stats.max_deviation, worst);
-      const bool helpless = std::any_of(tri.begin(), tri.end(), [&](const RowPoint& p) { return p.id >= 0 && off_edge.count(p.id); });
-      if (worst > 0.9 * tolerance && !helpless)
+      stats.max_deviation = std::max(stats.max_deviation, from_surface);
+      if (worst > 0.9 * tolerance)
         bad.push_back({std::min({tri[0].u, tri[1].u, tri[2].u}), std::max({tri[0].u, tri[1].u, tri[2].u})});
     }
     if (debug) fprintf(stderr, "refine round %d: %zu facets, %zu bad, U %zu, max dev %g\n", round, tris.size(), bad.size(), U.size(), stats.max_deviation);
@@ -203,7 +226,9 @@ RoundMeshStats mesh_rounding_surface(const RoundingSurface& surface, const std::
     std::vector<double> refined{U.front()};
     for (size_t i = 1; i < U.size(); ++i) {
       const double a = U[i - 1], b = U[i];
-      const bool split = (b - a) > 1e-3 * h_min(a) &&
+      // Never finer than the least step (a facet that still strays then sits on a trim point that
+      // lies off the surface: thinner facets would not bring it nearer).
+      const bool split = 0.5 * (b - a) >= h_min(a) &&
                          std::any_of(bad.begin(), bad.end(), [&](auto& r) { return r.first < b && r.second > a; });
       if (split) refined.push_back(0.5 * (a + b));
       refined.push_back(b);

@@ -39,9 +39,9 @@ ROWS = {}
 # turns the line into a failure until it is struck from this list.
 KNOWN_FAULTS = {
     "deviation": set(),
-    "topology": {("s_chain", "coarse"), ("s_chain_var3", "coarse")},
+    "topology": set(),
     "locality": set(),
-    "smoothness": {("s_chain", "coarse"), ("s_chain_var3", "coarse")},
+    "smoothness": set(),
     "quality": set(),
 }
 
