@@ -133,9 +133,14 @@ RoundedChain round_one_chain(const MeshTopology& mesh, const Vec3& seed, const R
   MeshEdit edit(mesh);
   const int segments = profile_segments(stations, tol);
   auto spacing = [&](double u) { return std::max(kMaxStepRatio * profile_step(surface, stations, segments, u), 1e-6); };
-  // Cut facets and end caps get inner points for shape, anywhere inside them: a long facet cut by the
-  // trim line is retriangulated whole, but nothing beyond it changes.
-  const Refinement shape{20.0, {}};
+  // Cut facets and end caps get inner points for shape, but only within the reach: beyond it every
+  // facet is the input's own, or one whose other corners reach into the band.
+  auto within_reach = [&](const Vec3& p) {
+    double d;
+    chain.project(p, &d);
+    return d <= reach;
+  };
+  const Refinement shape{20.0, within_reach};
   const TrimLines trim = trim_base_meshes(mesh, chain, base, surface, stations, {tol, spacing, shape}, edit);
   timer.done("trim");
   const size_t round_begin = edit.added.size();

@@ -24,46 +24,47 @@ bool blocks_ear(const Eigen::Vector2d& p, const Eigen::Vector2d& a, const Eigen:
 }
 
 // Lawson flips inside the polygon: an inner diagonal is flipped when the other diagonal of its (convex)
-// quadrilateral gives a larger smallest angle. Boundary edges never move.
-void improve_by_flips(const std::vector<Vec3>& P, const std::vector<Eigen::Vector2d>& Q, std::vector<std::array<int, 3>>& tris) {
+// quadrilateral gives a larger smallest angle; the four edges around a flipped one are checked again.
+// Boundary edges never move.
+void improve_by_flips(const std::vector<Vec3>& P, const std::vector<Eigen::Vector2d>& Q, std::vector<std::array<int, 3>>& tris,
+                      std::vector<int>* changed = nullptr) {
   auto key = [](int a, int b) { return std::uint64_t(std::min(a, b)) << 32 | std::uint32_t(std::max(a, b)); };
-  for (size_t guard = 0; guard < 4 * tris.size() + 8; ++guard) {  // one flip per sweep, while flips help
-    std::unordered_map<std::uint64_t, std::pair<int, int>> owner;  // edge -> (triangle, its corner opposite)
-    bool flipped = false;
-    for (int t = 0; t < int(tris.size()) && !flipped; ++t)
-      for (int k = 0; k < 3 && !flipped; ++k) {
-        const int a = tris[t][k], b = tris[t][(k + 1) % 3], c = tris[t][(k + 2) % 3];
-        auto [it, fresh] = owner.try_emplace(key(a, b), t, c);
-        if (fresh) continue;
-        const int u = it->second.first, d = it->second.second;  // triangle u = (b, a, d)
-        // Both new triangles must keep a positive area, or the flip would leave the polygon.
-        if (cross2(Q[c], Q[a], Q[d]) <= 0 || cross2(Q[d], Q[b], Q[c]) <= 0) continue;
-        const double now = std::min(smallest_angle(P[a], P[b], P[c]), smallest_angle(P[b], P[a], P[d]));
-        const double then = std::min(smallest_angle(P[c], P[a], P[d]), smallest_angle(P[d], P[b], P[c]));
-        if (then <= now + 1e-9) continue;
-        tris[t] = {c, a, d}, tris[u] = {d, b, c};
-        flipped = true;
-      }
-    if (!flipped) return;
+  std::unordered_map<std::uint64_t, std::array<int, 2>> sides;  // edge -> its one or two triangles
+  std::vector<std::uint64_t> todo;
+  for (int t = 0; t < int(tris.size()); ++t)
+    for (int k = 0; k < 3; ++k) {
+      auto [it, fresh] = sides.try_emplace(key(tris[t][k], tris[t][(k + 1) % 3]), std::array<int, 2>{t, -1});
+      if (!fresh) it->second[1] = t, todo.push_back(it->first);
+    }
+  auto replace = [&](int a, int b, int from, int to) {
+    auto& pair = sides.at(key(a, b));
+    (pair[0] == from ? pair[0] : pair[1]) = to;
+  };
+  for (size_t flips = 0; !todo.empty() && flips < 10 * tris.size() + 100;) {
+    const std::uint64_t e = todo.back();
+    todo.pop_back();
+    auto it = sides.find(e);
+    if (it == sides.end() || it->second[1] < 0) continue;
+    int t = it->second[0], u = it->second[1];
+    int k = 0;  // the edge runs a -> b in t
+    while (key(tris[t][k], tris[t][(k + 1) % 3]) != e) ++k;
+    const int a = tris[t][k], b = tris[t][(k + 1) % 3], c = tris[t][(k + 2) % 3];
+    int d = -1;
+    for (int m = 0; m < 3; ++m)
+      if (tris[u][m] != a && tris[u][m] != b) d = tris[u][m];
+    // Both new triangles must keep a positive area, or the flip would leave the polygon.
+    if (cross2(Q[c], Q[a], Q[d]) <= 0 || cross2(Q[d], Q[b], Q[c]) <= 0) continue;
+    const double now = std::min(smallest_angle(P[a], P[b], P[c]), smallest_angle(P[b], P[a], P[d]));
+    const double then = std::min(smallest_angle(P[c], P[a], P[d]), smallest_angle(P[d], P[b], P[c]));
+    if (then <= now + 1e-9) continue;
+    tris[t] = {c, a, d}, tris[u] = {d, b, c};
+    sides.erase(it);
+    sides[key(c, d)] = {t, u};
+    replace(a, d, u, t), replace(b, c, t, u);
+    for (std::uint64_t f : {key(a, c), key(a, d), key(b, c), key(b, d)}) todo.push_back(f);
+    if (changed) changed->push_back(t), changed->push_back(u);
+    ++flips;
   }
-}
-
-double smallest_angle_of(const std::vector<Vec3>& P, const std::vector<std::array<int, 3>>& tris) {
-  double q = INFINITY;
-  for (const auto& t : tris) q = std::min(q, smallest_angle(P[t[0]], P[t[1]], P[t[2]]));
-  return q;
-}
-
-// The smallest angle of the triangles in `now` that were not in `before` (as sets of corners).
-double smallest_made_angle(const std::vector<Vec3>& P, const std::vector<std::array<int, 3>>& before,
-                           const std::vector<std::array<int, 3>>& now) {
-  auto sorted = [](std::array<int, 3> t) { std::sort(t.begin(), t.end()); return t; };
-  std::set<std::array<int, 3>> old;
-  for (const auto& t : before) old.insert(sorted(t));
-  double q = INFINITY;
-  for (const auto& t : now)
-    if (!old.count(sorted(t))) q = std::min(q, smallest_angle(P[t[0]], P[t[1]], P[t[2]]));
-  return q;
 }
 
 bool inside_polygon(const Eigen::Vector2d& p, const std::vector<Eigen::Vector2d>& Q, size_t boundary) {
@@ -151,6 +152,7 @@ void add_inner_points(std::vector<Vec3>& P, std::vector<Eigen::Vector2d>& Q, std
     }
     if (worst < 0) return;
     bool mended = false;
+    std::vector<int> made;
     for (auto [x, spacing] : mending_points(Q, tris[worst])) {
       const int host = host_of(x, spacing);
       if (host < 0) continue;
@@ -161,8 +163,11 @@ void add_inner_points(std::vector<Vec3>& P, std::vector<Eigen::Vector2d>& Q, std
       tris[host] = {h[0], h[1], k};
       tris.push_back({h[1], h[2], k});
       tris.push_back({h[2], h[0], k});
-      improve_by_flips(P, Q, tris);
-      if (smallest_made_angle(P, before, tris) > worst_q + 1e-9) {
+      made = {host, int(tris.size()) - 2, int(tris.size()) - 1};
+      improve_by_flips(P, Q, tris, &made);
+      double made_q = INFINITY;
+      for (int t : made) made_q = std::min(made_q, smallest_angle(P[tris[t][0]], P[tris[t][1]], P[tris[t][2]]));
+      if (made_q > worst_q + 1e-9) {
         mended = true;
         break;
       }
@@ -172,16 +177,17 @@ void add_inner_points(std::vector<Vec3>& P, std::vector<Eigen::Vector2d>& Q, std
       hopeless[worst] = 1;
       continue;
     }
-    hopeless.assign(tris.size(), 0);
+    hopeless.resize(tris.size(), 0);  // the triangles made may be mended again, the others not
+    for (int t : made) hopeless[t] = 0;
     ++added;
   }
 }
 
 // Inner points (never the polygon's own) move where the smallest angle around them is largest: towards
-// the centre of their neighbours, or a step in one of eight directions; a few sweeps over, each followed
-// by flips.
+// the centre of their neighbours, or a step in one of eight directions, where the caller admits points;
+// a few sweeps over, each followed by flips.
 void smooth_inner_points(std::vector<Vec3>& P, std::vector<Eigen::Vector2d>& Q, std::vector<std::array<int, 3>>& tris,
-                         size_t boundary, const Vec3& e1, const Vec3& e2) {
+                         size_t boundary, const Refinement& refine, const Vec3& e1, const Vec3& e2) {
   auto to_3d = [&](const Eigen::Vector2d& x) { return Vec3(P[0] + (x.x() - Q[0].x()) * e1 + (x.y() - Q[0].y()) * e2); };
   for (int sweep = 0; sweep < 16; ++sweep) {
     bool moved = false;
@@ -213,6 +219,7 @@ void smooth_inner_points(std::vector<Vec3>& P, std::vector<Eigen::Vector2d>& Q, 
       for (double step : {0.2 * reach, 0.05 * reach})
         for (int d = 0; d < 8; ++d) tries.push_back(Q[k] + step * Eigen::Vector2d(std::cos(d * M_PI / 4), std::sin(d * M_PI / 4)));
       for (const Eigen::Vector2d& x : tries) {
+        if (refine.admit && !refine.admit(to_3d(x))) continue;
         Q[k] = x, P[k] = to_3d(x);
         const double q = star_quality();
         if (q > best + 1e-9) best = q, best_q = x, moved = true;
@@ -222,6 +229,46 @@ void smooth_inner_points(std::vector<Vec3>& P, std::vector<Eigen::Vector2d>& Q, 
     if (!moved) return;
     improve_by_flips(P, Q, tris);
   }
+}
+
+// Ear clipping that always cuts the best-shaped ear, then flips: the polygon P / Q[0, boundary),
+// counter-clockwise.
+std::vector<std::array<int, 3>> clip_ears(const std::vector<Vec3>& P, const std::vector<Eigen::Vector2d>& Q, size_t boundary) {
+  std::vector<int> idx(boundary);
+  for (size_t i = 0; i < idx.size(); ++i) idx[i] = int(i);
+  std::vector<std::array<int, 3>> tris;
+  while (idx.size() > 3) {
+    int best = -1;
+    double best_q = -1;
+    const int m = int(idx.size());
+    for (int i = 0; i < m; ++i) {
+      const int a = idx[(i + m - 1) % m], b = idx[i], c = idx[(i + 1) % m];
+      const auto &qa = Q[a], &qb = Q[b], &qc = Q[c];
+      if (cross2(qa, qb, qc) <= 1e-9 * (qb - qa).norm() * (qc - qb).norm()) continue;  // reflex or flat: no ear
+      bool empty = true;
+      for (int j = 0; j < m && empty; ++j) {
+        const int w = idx[j];
+        if (w == a || w == b || w == c) continue;
+        empty = !blocks_ear(Q[w], qa, qb, qc);
+      }
+      if (!empty) continue;
+      const double q = smallest_angle(P[a], P[b], P[c]);
+      if (q > best_q) best_q = q, best = i;
+    }
+    if (best < 0) {
+      // Numerically degenerate polygon: cut the flattest corner so the loop still closes.
+      if (getenv("MESHROUND_DEBUG")) {
+        fprintf(stderr, "ear clipping stuck on %d points:\n", m);
+        for (int j = 0; j < m; ++j) fprintf(stderr, "  (%g %g %g)\n", P[idx[j]].x(), P[idx[j]].y(), P[idx[j]].z());
+      }
+      best = 0;
+    }
+    tris.push_back({idx[(best + m - 1) % m], idx[best], idx[(best + 1) % m]});
+    idx.erase(idx.begin() + best);
+  }
+  tris.push_back({idx[0], idx[1], idx[2]});
+  improve_by_flips(P, Q, tris);
+  return tris;
 }
 
 }  // namespace
@@ -248,41 +295,10 @@ void triangulate_polygon(MeshEdit& edit, const std::vector<int>& polygon, const 
     area += a.x() * b.y() - a.y() * b.x();
   }
   const bool flipped = area < 0;
-  std::vector<int> idx(ring.size());
-  for (size_t i = 0; i < idx.size(); ++i) idx[i] = int(i);
-  if (flipped) std::reverse(idx.begin(), idx.end());
-  std::vector<std::array<int, 3>> tris;  // indices into ring, counter-clockwise in (e1, e2)
-  while (idx.size() > 3) {
-    int best = -1;
-    double best_q = -1;
-    const int m = int(idx.size());
-    for (int i = 0; i < m; ++i) {
-      const int a = idx[(i + m - 1) % m], b = idx[i], c = idx[(i + 1) % m];
-      const auto &qa = Q[a], &qb = Q[b], &qc = Q[c];
-      if (cross2(qa, qb, qc) <= 1e-9 * (qb - qa).norm() * (qc - qb).norm()) continue;  // reflex or flat: no ear
-      bool empty = true;
-      for (int j = 0; j < m && empty; ++j) {
-        const int w = idx[j];
-        if (w == a || w == b || w == c) continue;
-        empty = !blocks_ear(Q[w], qa, qb, qc);
-      }
-      if (!empty) continue;
-      const double q = smallest_angle(P[a], P[b], P[c]);
-      if (q > best_q) best_q = q, best = i;
-    }
-    if (best < 0) {
-      // Numerically degenerate polygon: cut the flattest corner so the loop still closes.
-      if (getenv("MESHROUND_DEBUG")) {
-        fprintf(stderr, "ear clipping stuck on %d points:\n", m);
-        for (int j = 0; j < m; ++j) fprintf(stderr, "  %d (%g %g %g)\n", ring[idx[j]], P[idx[j]].x(), P[idx[j]].y(), P[idx[j]].z());
-      }
-      best = 0;
-    }
-    tris.push_back({idx[(best + m - 1) % m], idx[best], idx[(best + 1) % m]});
-    idx.erase(idx.begin() + best);
+  if (flipped) {
+    std::reverse(ring.begin(), ring.end()), std::reverse(P.begin(), P.end()), std::reverse(Q.begin(), Q.end());
   }
-  tris.push_back({idx[0], idx[1], idx[2]});
-  improve_by_flips(P, Q, tris);
+  std::vector<std::array<int, 3>> tris = clip_ears(P, Q, ring.size());  // indices into ring
   const size_t boundary = ring.size();
   if (refine.quality_deg > 0) {
     // Inner points only where the polygon is flat: they are placed in its plane.
@@ -291,11 +307,13 @@ void triangulate_polygon(MeshEdit& edit, const std::vector<int>& polygon, const 
     for (size_t i = 0; i < boundary; ++i) off = std::max(off, std::abs((P[i] - P[0]).dot(n)));
     if (off <= 1e-9 * size) {
       add_inner_points(P, Q, tris, boundary, refine, e1, e2);
-      smooth_inner_points(P, Q, tris, boundary, e1, e2);
+      smooth_inner_points(P, Q, tris, boundary, refine, e1, e2);
     }
   }
   ring.resize(P.size(), -1);
-  for (size_t i = boundary; i < P.size(); ++i) ring[i] = edit.add_point(P[i]);
+  for (const auto& t : tris)  // inner points still in use become mesh vertices
+    for (int k : t)
+      if (ring[k] < 0) ring[k] = edit.add_point(P[k]);
   for (const auto& t : tris) {
     if (flipped) out.push_back({ring[t[2]], ring[t[1]], ring[t[0]]});
     else out.push_back({ring[t[0]], ring[t[1]], ring[t[2]]});

@@ -182,8 +182,26 @@ TrimLines trim_base_meshes(const MeshTopology& mesh, const SharpChain& chain, co
       piece.trim_end = trim_end, piece.kept_end = kept_end;
       const Vec3 x = edit.point(trim_end), y = edit.point(kept_end);
       const double length = (y - x).norm(), start = opt.max_spacing(u);
-      for (double at = start, step = start; length - at > 1.5 * step; at += step)
-        piece.points.push_back(edit.add_point(x + (y - x) * (at / length))), step *= 1.5;
+      double last = 0;
+      for (double at = start, step = start; length - at > 1.5 * step; at += step, step *= 1.5) {
+        const Vec3 p = x + (y - x) * (at / length);
+        if (opt.shape.admit && !opt.shape.admit(p)) {
+          // None beyond the reach either, but one where the piece leaves it: the facets beyond then
+          // reach back to it instead of to the last graded point.
+          double in = last, out = at;
+          for (int it = 0; it < 30; ++it) {
+            const double mid = 0.5 * (in + out);
+            (opt.shape.admit(x + (y - x) * (mid / length)) ? in : out) = mid;
+          }
+          if (length - in > 0.5 * step) {
+            if (in - last > 0.5 * step / 1.5 || piece.points.empty()) piece.points.push_back(edit.add_point(x + (y - x) * (in / length)));
+            else edit.new_points[piece.points.back() - edit.input.num_vertices()] = x + (y - x) * (in / length);  // move the last out
+          }
+          break;
+        }
+        piece.points.push_back(edit.add_point(p));
+        last = at;
+      }
     };
     // Cut points on the edges that cross the line.
     auto cut_point = [&](int a, int b) -> int {

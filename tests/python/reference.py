@@ -352,9 +352,8 @@ def topology(case, out, V0, F0, V1, F1, t0, t1):
 
 def locality(case, chain, V0, F0, V1, F1, made, ids, keys, reach):
     """Input vertices beyond reach * r + their longest edge, and input facets entirely beyond reach * r,
-    must be in the result bit for bit (facets with their orientation).  A facet made beyond (reach + 1) r
-    must lie inside an input facet that reaches into the reach: a long facet cut by the trim line is
-    retriangulated whole, nothing else out there is touched."""
+    must be in the result bit for bit (facets with their orientation); no facet is made entirely beyond
+    the reach (+5 %, for the chain's own tessellation)."""
     (id0, id1), (keys0, keys1) = ids, keys
     r = case.r_max
     longest = np.zeros(len(V0))
@@ -362,13 +361,7 @@ def locality(case, chain, V0, F0, V1, F1, made, ids, keys, reach):
         np.maximum.at(longest, F0[:, i], np.max([norm(V0[F0[:, i]] - V0[F0[:, j]]) for j in range(3)], axis=0))
     far_v = chain.distance(V0) > reach * r + longest
     far_f = chain.facet_distance(V0, F0, reach * r) > reach * r
-    far_made = chain.facet_distance(V1, F1[made], (reach + 1) * r) > (reach + 1) * r
-    if far_made.any():
-        reaching = chain.facet_distance(V0, F0, reach * r) <= reach * r
-        corners = V1[F1[made][far_made]]  # the corners and centroid of each: all inside a reaching facet
-        probes = np.concatenate([corners.reshape(-1, 3), corners.mean(axis=1)])
-        off = TriangleSet(V0, F0[reaching], r).distance(probes, cap=r) > 1e-6 * r
-        far_made[far_made] = off[:-len(corners)].reshape(-1, 3).any(axis=1) | off[-len(corners):]
+    far_made = chain.facet_distance(V1, F1[made], 1.05 * reach * r) > 1.05 * reach * r
     return dict(far_vertices=int(far_v.sum()), far_vertices_lost=int((~np.isin(id0[far_v], id1)).sum()),
                 far_facets=int(far_f.sum()), far_facets_lost=int((~np.isin(keys0[far_f], keys1)).sum()),
                 far_facets_added=int(far_made.sum()))

@@ -30,7 +30,7 @@ struct TrimLines {
 struct TrimOptions {
   double tolerance;     // chordal tolerance: how closely a trim line follows the surface's edge
   std::function<double(double u)> max_spacing;  // longest step along a trim line at u (keeps facets well shaped)
-  Refinement shape;     // inner points for the kept parts of cut facets (where they may go)
+  Refinement shape;     // inner points for the kept parts of cut facets and graded edges (where they may go)
 };
 
 TrimLines trim_base_meshes(const MeshTopology& mesh, const SharpChain& chain, const BaseMeshes& base,
