@@ -53,6 +53,17 @@ double distance_to_surface(const RoundingSurface& s, const Vec3& p, double u, do
   return best;
 }
 
+// Linear interpolation at u over items sorted by key(item), held constant beyond the ends.
+template <class Item, class Key, class Value>
+auto interpolate_at(const std::vector<Item>& items, double u, Key key, Value value) {
+  auto it = std::lower_bound(items.begin(), items.end(), u, [&](const Item& x, double y) { return key(x) < y; });
+  if (it == items.begin()) return value(items.front());
+  if (it == items.end()) return value(items.back());
+  const Item &a = *(it - 1), &b = *it;
+  const double t = (u - key(a)) / std::max(key(b) - key(a), 1e-300);
+  return decltype(value(a))((1 - t) * value(a) + t * value(b));
+}
+
 // Offsets of the trim points from the surface's edges, interpolated along u and faded across v.
 class EdgeOffsets {
  public:
@@ -68,13 +79,7 @@ class EdgeOffsets {
  private:
   static double fade(double v) { return v >= 0.5 ? 0.0 : (1 - 2 * v) * (1 - 2 * v); }
   Vec3 along(int side, double u) const {  // rows are sorted by (unwrapped) u
-    const auto& row = rows_[side];
-    auto it = std::lower_bound(row.begin(), row.end(), u, [](const std::pair<double, Vec3>& x, double y) { return x.first < y; });
-    if (it == row.begin()) return row.front().second;
-    if (it == row.end()) return row.back().second;
-    const auto &a = *(it - 1), &b = *it;
-    const double t = (u - a.first) / std::max(b.first - a.first, 1e-300);
-    return (1 - t) * a.second + t * b.second;
+    return interpolate_at(rows_[side], u, [](const auto& x) { return x.first; }, [](const auto& x) -> Vec3 { return x.second; });
   }
   std::vector<std::pair<double, Vec3>> rows_[2];
 };
@@ -91,14 +96,8 @@ int profile_segments(const std::vector<ProfileStation>& stations, double toleran
 }
 
 double profile_step(const RoundingSurface& surface, const std::vector<ProfileStation>& stations, int segments, double u) {
-  u = surface.wrap(u);
-  auto step = [&](const ProfileStation& st) { return st.radius * st.angle() / segments; };
-  auto it = std::lower_bound(stations.begin(), stations.end(), u, [](const ProfileStation& st, double x) { return st.s < x; });
-  if (it == stations.begin()) return step(stations.front());
-  if (it == stations.end()) return step(stations.back());
-  const ProfileStation &a = *(it - 1), &b = *it;
-  const double t = (u - a.s) / std::max(b.s - a.s, 1e-300);
-  return (1 - t) * step(a) + t * step(b);
+  return interpolate_at(stations, surface.wrap(u), [](const ProfileStation& st) { return st.s; },
+                        [&](const ProfileStation& st) { return st.radius * st.angle() / segments; });
 }
 
 RoundMeshStats mesh_rounding_surface(const RoundingSurface& surface, const std::vector<ProfileStation>& stations,

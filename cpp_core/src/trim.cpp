@@ -97,6 +97,12 @@ void remove_cap_corner(const MeshTopology& mesh, const BaseMeshes& base, int cor
   }
 }
 
+// The part of an input edge between a trim line and the edge's kept end, with points graded along it.
+struct KeptPiece {
+  int trim_end;             // the trim vertex (a cut point, or an input vertex on the line)
+  std::vector<int> points;  // inner points of the piece, from trim_end towards the kept end
+};
+
 // Facet g of the input as a polygon, with the points that the edit put on its edges (each edge's points
 // in order from its first vertex to its second, as `points_on(p, q)` gives them).
 template <class PointsOn>
@@ -125,6 +131,15 @@ TrimLines trim_base_meshes(const MeshTopology& mesh, const SharpChain& chain, co
       nearest[k] = std::min(nearest[k], d), farthest[k] = std::max(farthest[k], d);
     }
   const std::unordered_set<int> chain_vertices(chain.vertices.begin(), chain.vertices.end());
+  std::unordered_map<std::uint64_t, KeptPiece> kept_piece;  // edge_key(trim_end, kept_end) -> the piece
+  // The points on a kept piece, when a polygon runs along it from `from` to `to`.
+  auto add_piece_points = [&](int from, int to, std::vector<int>& polygon) {
+    auto it = kept_piece.find(edge_key(from, to));
+    if (it == kept_piece.end()) return;
+    const auto& points = it->second.points;
+    if (it->second.trim_end == from) polygon.insert(polygon.end(), points.begin(), points.end());
+    else polygon.insert(polygon.end(), points.rbegin(), points.rend());
+  };
   for (int side = 0; side < 2; ++side) {
     const ContactLineDistance distance{surface, chain, side};
     std::unordered_map<int, VertexSide> vs;
@@ -178,8 +193,8 @@ TrimLines trim_base_meshes(const MeshTopology& mesh, const SharpChain& chain, co
     // line's by half again each step: the facets on both sides of it can then grade from the fine trim
     // line to their far corners instead of fanning out in slivers.
     auto grade_piece = [&](int trim_end, int kept_end, double u) {
-      MeshEdit::KeptPiece& piece = edit.kept_piece[edge_key(trim_end, kept_end)];
-      piece.trim_end = trim_end, piece.kept_end = kept_end;
+      KeptPiece& piece = kept_piece[edge_key(trim_end, kept_end)];
+      piece.trim_end = trim_end;
       const Vec3 x = edit.point(trim_end), y = edit.point(kept_end);
       const double length = (y - x).norm(), start = opt.max_spacing(u);
       double last = 0;
@@ -234,14 +249,6 @@ TrimLines trim_base_meshes(const MeshTopology& mesh, const SharpChain& chain, co
       return id;
     };
 
-    // The points on the kept piece of a cut edge, when a polygon runs along it from `from` to `to`.
-    auto add_piece_points = [&](int from, int to, std::vector<int>& polygon) {
-      auto it = edit.kept_piece.find(edge_key(from, to));
-      if (it == edit.kept_piece.end()) return;
-      const auto& points = it->second.points;
-      if (it->second.trim_end == from) polygon.insert(polygon.end(), points.begin(), points.end());
-      else polygon.insert(polygon.end(), points.rbegin(), points.rend());
-    };
     // Input edges from a vertex on the line to a kept one are graded as well when both their facets are
     // cut or kept whole (all around such a vertex, so that no acute corner has points on one side
     // only); kept facets with graded edges are retriangulated with the points (below).
@@ -259,7 +266,7 @@ TrimLines trim_base_meshes(const MeshTopology& mesh, const SharpChain& chain, co
     for (int f : base.facets[side])
       for (int k = 0; k < 3; ++k) {
         const int a = mesh.F(f, k), b = mesh.F(f, (k + 1) % 3);
-        if (!((vs[a].d == 0 && vs[b].d > 0) || (vs[b].d == 0 && vs[a].d > 0)) || edit.kept_piece.count(edge_key(a, b))) continue;
+        if (!((vs[a].d == 0 && vs[b].d > 0) || (vs[b].d == 0 && vs[a].d > 0)) || kept_piece.count(edge_key(a, b))) continue;
         const std::vector<int> pair = mesh.edge_facets(a, b);
         if (pair.size() != 2 || !std::all_of(pair.begin(), pair.end(), [&](int g) { return cut_facets.count(g) || kept_whole(g); }))
           continue;
@@ -370,14 +377,9 @@ TrimLines trim_base_meshes(const MeshTopology& mesh, const SharpChain& chain, co
       const std::vector<int> polygon = facet_with_edge_points(mesh, g, [&](int p, int q, std::vector<int>& poly) {
         auto it = edit.edge_point.find(edge_key(p, q));
         if (it == edit.edge_point.end()) return;
-        const int x = it->second;
-        auto piece = edit.kept_piece.find(edge_key(x, p));  // the piece towards p, or else towards q
-        const bool towards_p = piece != edit.kept_piece.end();
-        if (!towards_p) piece = edit.kept_piece.find(edge_key(x, q));
-        const auto& points = piece->second.points;  // from x outwards
-        if (towards_p) poly.insert(poly.end(), points.rbegin(), points.rend());
-        poly.push_back(x);
-        if (!towards_p) poly.insert(poly.end(), points.begin(), points.end());
+        add_piece_points(p, it->second, poly);
+        poly.push_back(it->second);
+        add_piece_points(it->second, q, poly);
       });
       triangulate_polygon(edit, polygon, mesh.facet_normal(g), edit.added);
     }

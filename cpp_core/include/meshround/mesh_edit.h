@@ -20,13 +20,6 @@ struct MeshEdit {
   std::unordered_set<int> removed;         // input facets removed or replaced by pieces
   std::vector<std::array<int, 3>> added;   // new facets (pieces of cut facets, the round, end caps)
   std::unordered_map<std::uint64_t, int> edge_point;  // input edge -> the trim vertex inserted on it
-  // The part of an input edge between a trim line and the edge's kept end, with points graded along it.
-  struct KeptPiece {
-    int trim_end;              // the trim vertex (a cut point, or an input vertex on the line)
-    int kept_end;              // the input vertex at the other end
-    std::vector<int> points;   // inner points of the piece, from trim_end towards the kept end
-  };
-  std::unordered_map<std::uint64_t, KeptPiece> kept_piece;  // edge_key(trim_end, kept_end) -> the piece
 
   int add_point(const Vec3& p) {
     new_points.push_back(p);
