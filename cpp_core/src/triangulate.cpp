@@ -7,21 +7,13 @@
 #include <unordered_map>
 
 #include "meshround/mesh_edit.h"
+#include "planar.h"
+#include "split_polygon.h"
 
 namespace meshround {
 namespace {
 
-double cross2(const Eigen::Vector2d& o, const Eigen::Vector2d& x, const Eigen::Vector2d& y) {
-  return (x - o).x() * (y - o).y() - (x - o).y() * (y - o).x();
-}
-
-// p inside the ear (a, b, c) or within a hair of it: a vertex (nearly) on the diagonal c-a would be cut off
-// or leave a zero-area triangle behind.
-bool blocks_ear(const Eigen::Vector2d& p, const Eigen::Vector2d& a, const Eigen::Vector2d& b, const Eigen::Vector2d& c) {
-  const double hair = 1e-7 * std::max({(b - a).norm(), (c - b).norm(), (a - c).norm()});
-  return cross2(a, b, p) >= -hair * (b - a).norm() && cross2(b, c, p) >= -hair * (c - b).norm() &&
-         cross2(c, a, p) >= -hair * (a - c).norm();
-}
+using namespace planar;
 
 // Lawson flips inside the polygon: an inner diagonal is flipped when the other diagonal of its (convex)
 // quadrilateral gives a larger smallest angle; the four edges around a flipped one are checked again.
@@ -67,15 +59,6 @@ void improve_by_flips(const std::vector<Vec3>& P, const std::vector<Eigen::Vecto
   }
 }
 
-bool inside_polygon(const Eigen::Vector2d& p, const std::vector<Eigen::Vector2d>& Q, size_t boundary) {
-  bool in = false;
-  for (size_t i = 0, j = boundary - 1; i < boundary; j = i++)
-    if ((Q[i].y() > p.y()) != (Q[j].y() > p.y()) &&
-        p.x() < (Q[j].x() - Q[i].x()) * (p.y() - Q[i].y()) / (Q[j].y() - Q[i].y()) + Q[i].x())
-      in = !in;
-  return in;
-}
-
 // Where a point meant to mend triangle `w` may go, best first, each with the spacing it should keep from
 // the polygon's sides and vertices: the circumcentre, then apexes on each side of the triangle (longest
 // first) of isosceles triangles with base angles from 60 down to 12 degrees. The second kind mends thin
@@ -93,7 +76,7 @@ std::vector<std::pair<Eigen::Vector2d, double>> mending_points(const std::vector
   std::array<int, 3> sides{0, 1, 2};
   auto length = [&](int k) { return (Q[w[(k + 1) % 3]] - Q[w[k]]).norm(); };
   std::sort(sides.begin(), sides.end(), [&](int i, int j) { return length(i) > length(j); });
-  for (double height : {0.866, 0.289, 0.182, 0.106})  // base angles 60, 30, 20, 12 degrees
+  for (auto [height, base_angle] : kApexHeights)
     for (int k : sides) {
       const Eigen::Vector2d s0 = Q[w[k]], s1 = Q[w[(k + 1) % 3]];
       // The triangle is counter-clockwise: its inside is left of each side.
@@ -271,6 +254,41 @@ std::vector<std::array<int, 3>> clip_ears(const std::vector<Vec3>& P, const std:
   return tris;
 }
 
+// Triangulates and refines the counter-clockwise ring P / Q[0, boundary); inner points are appended.
+std::vector<std::array<int, 3>> mesh_ring(std::vector<Vec3>& P, std::vector<Eigen::Vector2d>& Q, size_t boundary,
+                                          const Refinement& refine, bool flat, const Vec3& e1, const Vec3& e2) {
+  std::vector<std::array<int, 3>> tris = clip_ears(P, Q, boundary);
+  if (refine.quality_deg > 0 && flat) {  // inner points go in the polygon's plane
+    add_inner_points(P, Q, tris, boundary, refine, e1, e2);
+    smooth_inner_points(P, Q, tris, boundary, refine, e1, e2);
+  }
+  return tris;
+}
+
+// Meshes each ring left after split_for_refinement on its own, after the triangles split off (`tris`).
+std::vector<std::array<int, 3>> mesh_ring_in_pieces(std::vector<Vec3>& P, std::vector<Eigen::Vector2d>& Q,
+                                                    const std::vector<std::vector<int>>& pieces,
+                                                    std::vector<std::array<int, 3>> tris, const Refinement& refine,
+                                                    const Vec3& e1, const Vec3& e2) {
+  for (const auto& piece : pieces) {
+    std::vector<Vec3> piece_p;
+    std::vector<Eigen::Vector2d> piece_q;
+    for (int v : piece) piece_p.push_back(P[v]), piece_q.push_back(Q[v]);
+    std::vector<int> index = piece;  // piece's ids -> P's
+    for (const auto& t : mesh_ring(piece_p, piece_q, piece.size(), refine, true, e1, e2)) {
+      for (size_t k = index.size(); k < piece_p.size(); ++k) index.push_back(int(P.size())), P.push_back(piece_p[k]), Q.push_back(piece_q[k]);
+      tris.push_back({index[t[0]], index[t[1]], index[t[2]]});
+    }
+  }
+  return tris;
+}
+
+double smallest_angle_of(const std::vector<Vec3>& P, const std::vector<std::array<int, 3>>& tris) {
+  double q = INFINITY;
+  for (const auto& t : tris) q = std::min(q, smallest_angle(P[t[0]], P[t[1]], P[t[2]]));
+  return q;
+}
+
 }  // namespace
 
 void triangulate_polygon(MeshEdit& edit, const std::vector<int>& polygon, const Vec3& normal,
@@ -298,18 +316,26 @@ void triangulate_polygon(MeshEdit& edit, const std::vector<int>& polygon, const 
   if (flipped) {
     std::reverse(ring.begin(), ring.end()), std::reverse(P.begin(), P.end()), std::reverse(Q.begin(), Q.end());
   }
-  std::vector<std::array<int, 3>> tris = clip_ears(P, Q, ring.size());  // indices into ring
   const size_t boundary = ring.size();
-  if (refine.quality_deg > 0) {
-    // Inner points only where the polygon is flat: they are placed in its plane.
-    double size = 0, off = 0;
-    for (size_t i = 0; i < boundary; ++i) size = std::max(size, (P[i] - P[0]).norm());
-    for (size_t i = 0; i < boundary; ++i) off = std::max(off, std::abs((P[i] - P[0]).dot(n)));
-    if (off <= 1e-9 * size) {
-      add_inner_points(P, Q, tris, boundary, refine, e1, e2);
-      smooth_inner_points(P, Q, tris, boundary, refine, e1, e2);
+  double size = 0, off = 0;
+  for (size_t i = 0; i < boundary; ++i) size = std::max(size, (P[i] - P[0]).norm());
+  for (size_t i = 0; i < boundary; ++i) off = std::max(off, std::abs((P[i] - P[0]).dot(n)));
+  const bool flat = off <= 1e-9 * size;
+  // Two tries: the polygon whole, and with the parts refinement cannot shape split off first
+  // (split_polygon.h); the one whose smallest angle is larger is kept. Triangles index P / Q.
+  std::vector<Vec3> P_whole = P;
+  std::vector<Eigen::Vector2d> Q_whole = Q;
+  std::vector<std::array<int, 3>> tris = mesh_ring(P_whole, Q_whole, boundary, refine, flat, e1, e2);
+  if (refine.quality_deg > 0 && flat) {
+    auto to_3d = [&](const Eigen::Vector2d& x) { return Vec3(P[0] + (x.x() - Q[0].x()) * e1 + (x.y() - Q[0].y()) * e2); };
+    std::vector<std::array<int, 3>> split;  // the parts split off, then the rest
+    const auto rest = split_for_refinement(P, Q, boundary, refine, to_3d, split);
+    if (!split.empty()) {
+      split = mesh_ring_in_pieces(P, Q, rest, std::move(split), refine, e1, e2);
+      if (smallest_angle_of(P, split) > smallest_angle_of(P_whole, tris) + 1e-9) tris = std::move(split), P_whole = P, Q_whole = Q;
     }
   }
+  P = std::move(P_whole), Q = std::move(Q_whole);
   ring.resize(P.size(), -1);
   for (const auto& t : tris)  // inner points still in use become mesh vertices
     for (int k : t)

@@ -191,32 +191,28 @@ TrimLines trim_base_meshes(const MeshTopology& mesh, const SharpChain& chain, co
 
     // The kept piece of a long edge from the trim line gets points whose spacing grows from the trim
     // line's by half again each step: the facets on both sides of it can then grade from the fine trim
-    // line to their far corners instead of fanning out in slivers.
+    // line to their far corners instead of fanning out in slivers. None goes beyond the reach, but one
+    // where the piece leaves it: the facets beyond hinge on that point, and fan from it back to the
+    // nearer points within a narrow angle (the face's width seen from the hinge). That fan is only well
+    // shaped when the hinge's neighbour is far, so no graded point stays in the outer kHingeRoom of the
+    // piece's part within the reach.
+    constexpr double kHingeRoom = 0.6;
     auto grade_piece = [&](int trim_end, int kept_end, double u) {
       KeptPiece& piece = kept_piece[edge_key(trim_end, kept_end)];
       piece.trim_end = trim_end;
       const Vec3 x = edit.point(trim_end), y = edit.point(kept_end);
-      const double length = (y - x).norm(), start = opt.max_spacing(u);
-      double last = 0;
-      for (double at = start, step = start; length - at > 1.5 * step; at += step, step *= 1.5) {
-        const Vec3 p = x + (y - x) * (at / length);
-        if (opt.shape.admit && !opt.shape.admit(p)) {
-          // None beyond the reach either, but one where the piece leaves it: the facets beyond then
-          // reach back to it instead of to the last graded point.
-          double in = last, out = at;
-          for (int it = 0; it < 30; ++it) {
-            const double mid = 0.5 * (in + out);
-            (opt.shape.admit(x + (y - x) * (mid / length)) ? in : out) = mid;
-          }
-          if (length - in > 0.5 * step) {
-            if (in - last > 0.5 * step / 1.5 || piece.points.empty()) piece.points.push_back(edit.add_point(x + (y - x) * (in / length)));
-            else edit.new_points[piece.points.back() - edit.input.num_vertices()] = x + (y - x) * (in / length);  // move the last out
-          }
-          break;
-        }
-        piece.points.push_back(edit.add_point(p));
-        last = at;
+      const double length = (y - x).norm();
+      auto admitted = [&](double at) { return !opt.shape.admit || opt.shape.admit(x + (y - x) * (at / length)); };
+      std::vector<double> stops;  // distances from the trim end
+      double at = opt.max_spacing(u), step = at;
+      for (; length - at > 1.5 * step && admitted(at); at += step, step *= 1.5) stops.push_back(at);
+      if (length - at > 1.5 * step) {  // the piece leaves the reach between the last stop and `at`
+        double in = stops.empty() ? 0 : stops.back(), out = at;
+        for (int it = 0; it < 30; ++it) (admitted(0.5 * (in + out)) ? in : out) = 0.5 * (in + out);
+        while (!stops.empty() && stops.back() > (1 - kHingeRoom) * in) stops.pop_back();
+        if (length - in > 0.5 * step) stops.push_back(in);
       }
+      for (double s : stops) piece.points.push_back(edit.add_point(x + (y - x) * (s / length)));
     };
     // Cut points on the edges that cross the line.
     auto cut_point = [&](int a, int b) -> int {
