@@ -55,11 +55,13 @@ double wrapped_delta(const RoundingSurface& s, double from, double to) {
   return d;
 }
 
-// Facets of the end faces that the round cuts into at a capped chain end (convex ends; at a concave end
-// the round adds to the end face and nothing is in the way).
+// Facets of the end faces that the round cuts into at a capped chain end (a convex end), or that have a
+// vertex on the faces' traces within the band (a concave end: the round adds to the end face, and such a
+// vertex would sit right next to the arc).
 void remove_cap_corner(const MeshTopology& mesh, const BaseMeshes& base, int corner, const ProfileStation& st,
                        MeshEdit& edit, int* removed) {
-  const double r = st.radius, eps = 1e-7 * r;
+  // eps: "on" the traces and the arc, generous enough for float32 input coordinates (STL, Mesh.Mesh).
+  const double r = st.radius, eps = 1e-4 * r;
   const Vec3 a = (st.contact[0] - st.centre).normalized(), b = (st.contact[1] - st.centre).normalized();
   Eigen::Matrix<double, 3, 2> basis;
   basis << a, b;

@@ -68,6 +68,20 @@ def lchannel():
     return s, edges_where(s, lambda p: abs(p.y - 8) < TOL and abs(p.z - 8) < TOL)
 
 
+def acute_ridge():
+    """Convex 45 degree edge: a flat top meeting a wall undercut beneath it.  The contacts lie 2.4 r from
+    the edge, so the round fills most of the reach."""
+    s = extruded_profile([(0, 0), (60, 0), (60, 8), (3, 8), (25, 30), (0, 30)], 60)
+    return s, edges_where(s, lambda p: abs(p.y - 25) < TOL and abs(p.z - 30) < TOL)
+
+
+def vee_groove():
+    """Concave 60 degree edge: a floor met by a wall that leans over it (a V-groove's side).  The wall is
+    off the axes, so its float32 mesh vertices lie off the exact plane, as in any exported mesh."""
+    s = extruded_profile([(0, 0), (70, 0), (70, 10), (30, 10), (30 + 30 / math.tan(math.radians(60)), 40), (0, 40)], 60)
+    return s, edges_where(s, lambda p: abs(p.y - 30) < TOL and abs(p.z - 10) < TOL)
+
+
 DRAFT_DEG = 10.0
 
 
@@ -270,6 +284,8 @@ def part_fillet_feature(solid, stations):
 SPECS = {
     "box": (box, 5.0, None),
     "lchannel": (lchannel, 4.0, None),
+    "acute_ridge": (acute_ridge, 4.0, None),
+    "vee_groove": (vee_groove, 4.0, None),
     "draft_shoulder": (draft_shoulder, 5.0, None),
     "pocket_rim": (pocket_rim, 3.0, None),
     "s_chain": (s_plate, 4.0, None),
