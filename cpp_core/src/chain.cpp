@@ -48,8 +48,9 @@ std::pair<int, int> nearest_sharp_edge(const MeshTopology& mesh, const Vec3& see
     }
   }
   if (edge.first < 0 || best > search_radius)
-    throw RoundingError("no sharp edge (feature angle " + std::to_string(feature_angle_deg) +
-                        " deg) within " + std::to_string(search_radius) + " mm of the seed " + format_point(seed));
+    throw RoundingError("no sharp edge (feature angle " + format_number(feature_angle_deg) + " deg) within " +
+                        format_number(search_radius) + " mm of the seed " + format_point(seed) +
+                        "; for a blunter edge, lower the feature angle");
   return edge;
 }
 

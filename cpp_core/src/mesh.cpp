@@ -13,6 +13,13 @@ std::string format_point(const Vec3& p) {
   return s.str();
 }
 
+std::string format_number(double x) {
+  std::ostringstream s;
+  s.precision(6);
+  s << x;
+  return s.str();
+}
+
 MeshTopology::MeshTopology(const Points& V_, const Triangles& F_) : V(V_), F(F_) {
   const int n = int(V.rows()), m = int(F.rows());
   if (n == 0 || m == 0) throw RoundingError("the mesh is empty");

@@ -9,7 +9,7 @@ namespace meshround {
 RadiusLaw::RadiusLaw(const RoundOptions& options, const SharpChain& chain, double max_distance) {
   if (options.radius_law.empty()) {
     if (!(options.radius > 0) || !std::isfinite(options.radius))
-      throw RoundingError("the radius must be a positive number (got " + std::to_string(options.radius) + ")");
+      throw RoundingError("the radius must be a positive number (got " + format_number(options.radius) + ")");
     s_ = {0.0}, r_ = {options.radius}, slope_ = {0.0};
     return;
   }
@@ -17,12 +17,12 @@ RadiusLaw::RadiusLaw(const RoundOptions& options, const SharpChain& chain, doubl
   for (const RadiusControl& c : options.radius_law) {
     if (!(c.radius > 0) || !std::isfinite(c.radius))
       throw RoundingError("the radius control point at " + format_point(c.point) + " has radius " +
-                          std::to_string(c.radius) + "; radii must be positive");
+                          format_number(c.radius) + "; radii must be positive");
     double d;
     const double s = chain.project(c.point, &d);
     if (!(d <= max_distance))
-      throw RoundingError("the radius control point at " + format_point(c.point) + " is " + std::to_string(d) +
-                          " mm from the chain, farther than the reach (" + std::to_string(max_distance) + " mm)");
+      throw RoundingError("the radius control point at " + format_point(c.point) + " is " + format_number(d) +
+                          " mm from the chain, farther than the reach (" + format_number(max_distance) + " mm)");
     pts.push_back({s, c.radius});
     controls_.push_back({s, c});
   }
@@ -74,7 +74,7 @@ std::string RadiusLaw::nearest_control(double s) const {
   const auto& c = *std::min_element(controls_.begin(), controls_.end(), [&](const auto& x, const auto& y) {
     return std::abs(x.first - s) < std::abs(y.first - s);
   });
-  return "the radius control point at " + format_point(c.second.point) + " (r = " + std::to_string(c.second.radius) + ")";
+  return "the radius control point at " + format_point(c.second.point) + " (r = " + format_number(c.second.radius) + ")";
 }
 
 double RadiusLaw::min_radius() const { return *std::min_element(r_.begin(), r_.end()); }

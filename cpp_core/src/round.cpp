@@ -33,7 +33,7 @@ void validate(const RoundOptions& o) {
     for (const RadiusControl& c : o.radius_law)
       if (!c.point.allFinite()) throw RoundingError("a radius control point has a NaN or infinite coordinate");
   } else if (!(o.radius > 0) || !std::isfinite(o.radius)) {
-    throw RoundingError("the radius must be a positive number (got " + std::to_string(o.radius) + ")");
+    throw RoundingError("the radius must be a positive number (got " + format_number(o.radius) + ")");
   }
   if (!(o.tolerance >= 0) || !std::isfinite(o.tolerance)) throw RoundingError("the tolerance must be >= 0 (0 = r / 100)");
   if (!(o.feature_angle_deg > 0 && o.feature_angle_deg < 180))

@@ -120,14 +120,14 @@ ProfileStation solve_station(const SpineContext& ctx, double s, double r) {
   }
   st.centre = c;
   if (residual > 1e-6 * std::max(1.0, r) || (c - e).dot(nA + nB) <= 0)
-    throw RoundingError("no ball of radius " + std::to_string(r) + " touches both base meshes at " + format_point(e) +
+    throw RoundingError("no ball of radius " + format_number(r) + " touches both base meshes at " + format_point(e) +
                         ": the radius is too large for the faces there");
   const bool at_end = !chain.closed && (s <= 1e-9 * chain.length || s >= chain.length * (1 - 1e-9));
   for (int k = 0; k < 2; ++k) {
     st.region[k] = region_kind(code[k]);
     const std::uint64_t wall = region_edge(ctx.mesh, facet[k], code[k]);
     if (!at_end && ctx.base.walls[k].count(wall))
-      throw RoundingError("radius " + std::to_string(r) + " is too large at " + format_point(e) +
+      throw RoundingError("radius " + format_number(r) + " is too large at " + format_point(e) +
                           ": the ball would reach past the next sharp edge or the mesh boundary at " +
                           format_point(st.contact[k]));
     if (ctx.base.reach_limit[k].count(wall))

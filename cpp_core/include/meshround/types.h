@@ -18,5 +18,6 @@ struct RoundingError : std::runtime_error {
 };
 
 std::string format_point(const Vec3& p);  // "(x, y, z)" for messages
+std::string format_number(double x);      // 6 significant digits, for messages
 
 }  // namespace meshround
