@@ -68,6 +68,20 @@ def lchannel():
     return s, edges_where(s, lambda p: abs(p.y - 8) < TOL and abs(p.z - 8) < TOL)
 
 
+def tilted(builder, z_deg=25.0, x_deg=17.5):
+    """The solid of `builder`, turned about z then x: no face on an axis plane, so its float32 mesh
+    vertices lie off their faces' planes, as on a real part wherever it sits."""
+    def build():
+        solid, chain = builder()
+        turn = FreeCAD.Matrix()
+        turn.rotateZ(math.radians(z_deg))
+        turn.rotateX(math.radians(x_deg))
+        turned = solid.transformGeometry(turn)
+        mids = [turn.multiply(e.valueAt(0.5 * (e.FirstParameter + e.LastParameter))) for e in chain]
+        return turned, [e for e in turned.Edges if any(e.distToShape(Part.Vertex(m))[0] < TOL for m in mids)]
+    return build
+
+
 def acute_ridge():
     """Convex 45 degree edge: a flat top meeting a wall undercut beneath it.  The contacts lie 2.4 r from
     the edge, so the round fills most of the reach."""
@@ -283,6 +297,7 @@ def part_fillet_feature(solid, stations):
 # name -> (builder, radius, law); law: [(fraction of the chain's length, radius)] or None
 SPECS = {
     "box": (box, 5.0, None),
+    "box_tilted": (tilted(box), 5.0, None),
     "lchannel": (lchannel, 4.0, None),
     "acute_ridge": (acute_ridge, 4.0, None),
     "vee_groove": (vee_groove, 4.0, None),
