@@ -22,14 +22,25 @@ SharpChain straight_chain() {
 }
 }  // namespace
 
-TEST(RadiusLaw, TwoPointsAreLinearAndClampedOutside) {
+// OCCT's Add(2, 8, E) on a straight edge has r = 3.1786 and 6.8214 a quarter from either end (sections of
+// its fillet; tests/python's box_ends case checks the whole round against it).
+TEST(RadiusLaw, TwoPointsFollowOcctsStartEndLawAndAreClampedOutside) {
   const SharpChain chain = straight_chain();
   RoundOptions o;
   o.radius_law = {{Vec3(20, 0, 0), 2.0}, {Vec3(80, 0, 0), 8.0}};
   const RadiusLaw law(o, chain, 10);
   EXPECT_DOUBLE_EQ(law.at(0), 2.0);
+  EXPECT_DOUBLE_EQ(law.at(20), 2.0);
+  EXPECT_NEAR(law.at(35), 3.1786, 1e-4);
   EXPECT_DOUBLE_EQ(law.at(50), 5.0);
+  EXPECT_NEAR(law.at(65), 6.8214, 1e-4);
+  EXPECT_DOUBLE_EQ(law.at(80), 8.0);
   EXPECT_DOUBLE_EQ(law.at(100), 8.0);
+  double prev = 0;
+  for (double s = 0; s <= 100; s += 0.5) {  // monotone
+    EXPECT_GE(law.at(s), prev - 1e-12);
+    prev = law.at(s);
+  }
 }
 
 TEST(RadiusLaw, ThreePointsAreMonotoneWithoutOvershoot) {

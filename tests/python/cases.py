@@ -211,9 +211,11 @@ def section_radius(rounds, point, tangent):
 # ------------------------------------------------------------------------------------------------ cases
 class Case:
     """One rounding task.  `law`: None for a constant radius, else [(fraction of chain length, r)] stations
-    handed to OCCT; `radius` is what MeshRound gets (a float, or [(FreeCAD.Vector, r)] control points)."""
+    handed to OCCT; `radius` is what MeshRound gets (a float, or [(FreeCAD.Vector, r)] control points):
+    for a law, OCCT's own radius measured along the chain, or with controls="ends" just the law's first
+    and last radius at the chain's ends (a start -> end law, as a user gives it)."""
 
-    def __init__(self, name, builder, radius, law=None):
+    def __init__(self, name, builder, radius, law=None, controls="measured"):
         self.name = name
         self.solid, self.chain = builder()
         self.law = law
@@ -223,7 +225,12 @@ class Case:
         self.closed = is_closed(self.chain)
         self.reference = self._occt_fillet(radius)
         self.rounds = fillet_faces(self.reference, self.solid)
-        self.radius = radius if law is None else self.measured_law()
+        if law is None:
+            self.radius = radius
+        elif controls == "ends":
+            self.radius = [(V(*self.points[0]), law[0][1]), (V(*self.points[-1]), law[-1][1])]
+        else:
+            self.radius = self.measured_law()
         self._meshes = {}
 
     @property
@@ -307,6 +314,8 @@ SPECS = {
     "box_var": (box, None, [(0.0, 2.0), (1.0, 8.0)]),
     "lchannel_var": (lchannel, None, [(0.0, 2.0), (1.0, 6.0)]),
     "s_chain_var3": (s_plate, None, [(0.0, 2.5), (0.5, 5.0), (1.0, 3.0)]),
+    "box_ends": (box, None, [(0.0, 2.0), (1.0, 8.0)], "ends"),
+    "lchannel_ends": (lchannel, None, [(0.0, 6.0), (1.0, 2.0)], "ends"),
 }
 CONSTANT = [n for n, spec in SPECS.items() if spec[2] is None]
 VARIABLE = [n for n, spec in SPECS.items() if spec[2] is not None]
@@ -314,5 +323,4 @@ VARIABLE = [n for n, spec in SPECS.items() if spec[2] is not None]
 
 @functools.lru_cache(maxsize=None)
 def case(name):
-    builder, radius, law = SPECS[name]
-    return Case(name, builder, radius, law)
+    return Case(name, *SPECS[name])

@@ -1,8 +1,10 @@
 // Paper §4.4: the radius along a chain, constant or given by control points.
 //
-// Control points are projected onto the chain (by arc length). Two points give the linear start->end
-// law; three or more a C1 monotone cubic (Fritsch-Carlson: no overshoot between neighbouring values);
-// the radius is constant before the first and after the last point, periodic on a closed loop.
+// Control points are projected onto the chain (by arc length). Two points give OCCT's start->end law (the
+// one FreeCAD's Part Fillet makes from a start and an end radius: a monotone cubic, steeper in the middle
+// than at the ends); three or more a C1 monotone cubic (Fritsch-Carlson: no overshoot between
+// neighbouring values); the radius is constant before the first and after the last point, periodic on a
+// closed loop.
 #pragma once
 #include <string>
 #include <utility>
