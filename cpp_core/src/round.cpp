@@ -140,7 +140,9 @@ RoundedChain round_one_chain(const MeshTopology& mesh, const Vec3& seed, const R
     chain.project(p, &d);
     return d <= reach;
   };
-  const Refinement shape{20.0, within_reach};
+  // Gaps a quarter of the tolerance from flat (a variable round's end profile is tilted by the radius's
+  // slope) are filled like flat ones.
+  const Refinement shape{20.0, within_reach, 0.25 * tol};
   const TrimLines trim = trim_base_meshes(mesh, chain, base, surface, stations, {tol, spacing, shape}, edit);
   timer.done("trim");
   const size_t round_begin = edit.added.size();
@@ -180,6 +182,14 @@ RoundedChain round_one_chain(const MeshTopology& mesh, const Vec3& seed, const R
     report.min_new_angle_deg = std::min(report.min_new_angle_deg, smallest_angle_deg(edit.point(f[0]), edit.point(f[1]), edit.point(f[2])));
   for (int f : edit.removed)
     report.min_input_angle_deg = std::min(report.min_input_angle_deg, smallest_angle_deg(mesh.corner(f, 0), mesh.corner(f, 1), mesh.corner(f, 2)));
+  // Kept facets with a vertex snapped onto a trim line are changed facets too.
+  for (const auto& [v, moved_to] : edit.moved)
+    for (const int* f = mesh.facets_begin(v); f != mesh.facets_end(v); ++f) {
+      if (edit.removed.count(*f)) continue;
+      const int a = mesh.F(*f, 0), b = mesh.F(*f, 1), c = mesh.F(*f, 2);
+      report.min_new_angle_deg = std::min(report.min_new_angle_deg, smallest_angle_deg(edit.point(a), edit.point(b), edit.point(c)));
+      report.min_input_angle_deg = std::min(report.min_input_angle_deg, smallest_angle_deg(mesh.corner(*f, 0), mesh.corner(*f, 1), mesh.corner(*f, 2)));
+    }
   return out;
 }
 

@@ -323,7 +323,7 @@ void triangulate_polygon(MeshEdit& edit, const std::vector<int>& polygon, const 
   for (size_t i = 0; i < boundary; ++i) size = std::max(size, (P[i] - P[0]).norm());
   for (size_t i = 0; i < boundary; ++i) off = std::max(off, std::abs((P[i] - P[0]).dot(n)));
   for (size_t i = 0; i < boundary; ++i) magnitude = std::max(magnitude, P[i].cwiseAbs().maxCoeff());
-  const bool flat = off <= 1e-9 * size + 1e-6 * magnitude;
+  const bool flat = off <= std::max(1e-9 * size + 1e-6 * magnitude, refine.flat_tolerance);
   // Two tries: the polygon whole, and with the parts refinement cannot shape split off first
   // (split_polygon.h); the one whose smallest angle is larger is kept. Triangles index P / Q.
   std::vector<Vec3> P_whole = P;

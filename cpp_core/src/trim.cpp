@@ -38,13 +38,49 @@ struct ContactLineDistance {
   }
 };
 
-constexpr double kFar = 1e30;  // |signed distance| of a vertex whose side is clear without projecting it
+constexpr double kFar = 1e30;
+constexpr double kSnapKeepsAngle = 10 * M_PI / 180;  // facets around a vertex snapped from afar keep this  // |signed distance| of a vertex whose side is clear without projecting it
 
 struct VertexSide {
   double d = 0;        // signed distance (0 = on the trim line after snapping); +-kFar: side known only
   double u = 0;
   bool exact = false;  // d is the true distance
 };
+
+// Where vertex v (at signed distance d from the contact line, `away` the line's outward direction there)
+// can move onto the line without changing the mesh's surface by more than `flat_tol`: along `away` where
+// its facets are (nearly) coplanar, along the crease where they lie in two planes (an end face's edge),
+// nowhere at a corner of three or more. False when there is no such place.
+bool snap_target(const MeshTopology& mesh, int v, const ContactLineDistance& distance, double d, double u,
+                 const Vec3& away, double flat_tol, Vec3* q) {
+  const Vec3 p = mesh.point(v);
+  const int* begin = mesh.facets_begin(v);
+  const Vec3 n1 = mesh.facet_normal(*begin);
+  Vec3 crease = Vec3::Zero();
+  double widest = 0;
+  for (const int* g = begin; g != mesh.facets_end(v); ++g) {
+    const Vec3 c = n1.cross(mesh.facet_normal(*g));
+    if (c.norm() > widest) widest = c.norm(), crease = c.normalized();
+  }
+  if (widest < std::sin(20 * M_PI / 180)) {  // a smooth region: across the line, if that stays on it
+    *q = p - d * away;
+    for (const int* g = begin; g != mesh.facets_end(v); ++g)
+      if (std::abs((*q - p).dot(mesh.facet_normal(*g))) > flat_tol) return false;
+    return true;
+  }
+  for (const int* g = begin; g != mesh.facets_end(v); ++g)
+    if (std::abs(mesh.facet_normal(*g).dot(crease)) > 1e-3) return false;  // a corner, or a curved side
+  double t = 0;
+  Vec3 tau = away;
+  for (int it = 0; it < 4; ++it) {  // Newton along the crease
+    const double slope = crease.dot(tau);
+    if (std::abs(slope) < 0.2) return false;  // the crease runs nearly along the line
+    t -= d / slope;
+    d = distance(p + t * crease, u, &u, &tau);
+  }
+  *q = p + t * crease;
+  return std::abs(d) <= 1e-6 * (1 + std::abs(t));
+}
 
 double wrapped_delta(const RoundingSurface& s, double from, double to) {
   double d = to - from;
@@ -171,16 +207,26 @@ TrimLines trim_base_meshes(const MeshTopology& mesh, const SharpChain& chain, co
         s.d = distance(mesh.point(v), s_chain, &s.u, &away);
         if (chain_vertices.count(v)) s.d = std::min(s.d, -1e-9);  // the chain is inside the band by definition
         // A vertex very near the line moves onto it (when that does not change the surface): no slivers.
+        // Near means within a fifth of its shortest edge, or within 0.4 of the line's spacing when its
+        // facets keep their shape (a vertex that close to the line would leave a sliver between them).
         else if (std::abs(s.d) > 0 && !edit.moved.count(v)) {
           double shortest = INFINITY;
           for (int w : mesh.vertex_neighbours(v))  // (facets on the chain go with the band: their shape is moot)
             if (!chain_vertices.count(w)) shortest = std::min(shortest, (mesh.point(w) - mesh.point(v)).norm());
-          if (std::abs(s.d) < 0.2 * shortest) {
-            const Vec3 q = mesh.point(v) - s.d * away;
-            bool flat = true;
-            for (const int* g = mesh.facets_begin(v); g != mesh.facets_end(v) && flat; ++g)
-              flat = std::abs((q - mesh.point(v)).dot(mesh.facet_normal(*g))) <= 0.02 * opt.tolerance;
-            if (flat) {
+          Vec3 q;
+          if (std::abs(s.d) < 0.4 * std::max(opt.max_spacing(s.u), 0.5 * shortest) &&
+              snap_target(mesh, v, distance, s.d, s.u, away, 0.02 * opt.tolerance, &q)) {
+            const double move = (q - mesh.point(v)).norm();
+            const bool near_edges = move < 0.2 * shortest;
+            bool keeps_shape = near_edges || move < 0.4 * opt.max_spacing(s.u);
+            for (const int* g = mesh.facets_begin(v); g != mesh.facets_end(v) && keeps_shape && !near_edges; ++g) {
+              Vec3 c[3];  // with the neighbours snapped before it
+              for (int k = 0; k < 3; ++k) c[k] = mesh.F(*g, k) == v ? q : edit.point(mesh.F(*g, k));
+              const double before = smallest_angle(mesh.corner(*g, 0), mesh.corner(*g, 1), mesh.corner(*g, 2));
+              keeps_shape = (c[1] - c[0]).cross(c[2] - c[0]).dot(mesh.facet_normal(*g)) > 0 &&
+                            smallest_angle(c[0], c[1], c[2]) >= std::min(kSnapKeepsAngle, before);
+            }
+            if (keeps_shape) {
               edit.moved[v] = q;
               s.d = 0;
               ++out.vertices_snapped;

@@ -36,6 +36,8 @@ struct MeshEdit {
 struct Refinement {
   double quality_deg = 0;                  // > 0: add points while a triangle has a smaller angle
   std::function<bool(const Vec3&)> admit;  // optional: where points may go
+  double flat_tolerance = 0;               // a polygon this close to a plane still gets points (in that
+                                           // plane): an end face meeting a variable round's tilted end
 };
 
 // Triangulates a simple polygon (vertex ids, in order) in the plane with normal `normal`: ear clipping

@@ -40,8 +40,8 @@ struct RoundedChain {
 struct RoundReport {
   int facets_removed = 0, facets_added = 0;
   double max_deviation = 0;          // max over chains of the measured facet-to-surface distance
-  double min_new_angle_deg = 180;    // smallest angle of any new facet
-  double min_input_angle_deg = 180;  // smallest angle of the input facets that were cut
+  double min_new_angle_deg = 180;    // smallest angle of any new facet (or kept one with a snapped vertex)
+  double min_input_angle_deg = 180;  // smallest angle of the input facets that were cut or snapped
   bool input_forces_small_angles = false;
   std::map<std::string, double> seconds;  // per pass, summed over chains
   double seconds_total = 0;
