@@ -52,7 +52,7 @@ struct VertexSide {
 // its facets are (nearly) coplanar, along the crease where they lie in two planes (an end face's edge),
 // nowhere at a corner of three or more. False when there is no such place.
 bool snap_target(const MeshTopology& mesh, int v, const ContactLineDistance& distance, double d, double u,
-                 const Vec3& away, double flat_tol, Vec3* q) {
+                 const Vec3& away, double flat_tol, Vec3* q, bool* on_crease) {
   const Vec3 p = mesh.point(v);
   const int* begin = mesh.facets_begin(v);
   const Vec3 n1 = mesh.facet_normal(*begin);
@@ -62,7 +62,8 @@ bool snap_target(const MeshTopology& mesh, int v, const ContactLineDistance& dis
     const Vec3 c = n1.cross(mesh.facet_normal(*g));
     if (c.norm() > widest) widest = c.norm(), crease = c.normalized();
   }
-  if (widest < std::sin(20 * M_PI / 180)) {  // a smooth region: across the line, if that stays on it
+  *on_crease = widest >= std::sin(20 * M_PI / 180);
+  if (!*on_crease) {  // a smooth region: across the line, if that stays on it
     *q = p - d * away;
     for (const int* g = begin; g != mesh.facets_end(v); ++g)
       if (std::abs((*q - p).dot(mesh.facet_normal(*g))) > flat_tol) return false;
@@ -207,18 +208,20 @@ TrimLines trim_base_meshes(const MeshTopology& mesh, const SharpChain& chain, co
         s.d = distance(mesh.point(v), s_chain, &s.u, &away);
         if (chain_vertices.count(v)) s.d = std::min(s.d, -1e-9);  // the chain is inside the band by definition
         // A vertex very near the line moves onto it (when that does not change the surface): no slivers.
-        // Near means within a fifth of its shortest edge, or within 0.4 of the line's spacing when its
-        // facets keep their shape (a vertex that close to the line would leave a sliver between them).
+        // Near means within a fifth of its shortest edge; or, for a vertex on an end face's edge, within
+        // 0.4 of the line's spacing when its facets keep their shape (it would leave a sliver between
+        // the arc and itself in the end face).
         else if (std::abs(s.d) > 0 && !edit.moved.count(v)) {
           double shortest = INFINITY;
           for (int w : mesh.vertex_neighbours(v))  // (facets on the chain go with the band: their shape is moot)
             if (!chain_vertices.count(w)) shortest = std::min(shortest, (mesh.point(w) - mesh.point(v)).norm());
           Vec3 q;
+          bool on_crease = false;
           if (std::abs(s.d) < 0.4 * std::max(opt.max_spacing(s.u), 0.5 * shortest) &&
-              snap_target(mesh, v, distance, s.d, s.u, away, 0.02 * opt.tolerance, &q)) {
+              snap_target(mesh, v, distance, s.d, s.u, away, 0.02 * opt.tolerance, &q, &on_crease)) {
             const double move = (q - mesh.point(v)).norm();
             const bool near_edges = move < 0.2 * shortest;
-            bool keeps_shape = near_edges || move < 0.4 * opt.max_spacing(s.u);
+            bool keeps_shape = near_edges || (on_crease && move < 0.4 * opt.max_spacing(s.u));
             for (const int* g = mesh.facets_begin(v); g != mesh.facets_end(v) && keeps_shape && !near_edges; ++g) {
               Vec3 c[3];  // with the neighbours snapped before it
               for (int k = 0; k < 3; ++k) c[k] = mesh.F(*g, k) == v ? q : edit.point(mesh.F(*g, k));
