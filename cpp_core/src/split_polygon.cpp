@@ -91,9 +91,10 @@ std::vector<std::vector<int>> split_off_unmendable_sides(const std::vector<Vec3>
 }
 
 // Cuts off, with a fan, each corner of the ring where points are not admitted (beyond the reach) and
-// whose angle is wide enough for two good triangles: points on rays that split the angle evenly, as far
-// out as the ring allows, become the ring's new vertices there. Refinement alone cannot reach such a
-// corner: no point may go near it, so it would be fanned to points across the polygon.
+// whose angle is wide enough for two good triangles: points on 1-3 rays that split the angle evenly
+// become the ring's new vertices there, at the distance where the fan's triangles and the ears it leaves
+// beside it are best shaped. Refinement alone cannot reach such a corner: no point may go near it, so it
+// would be fanned to points across the polygon.
 void cut_off_far_corners(std::vector<Vec3>& P, std::vector<Eigen::Vector2d>& Q, std::vector<int>& ring,
                          const Refinement& refine, const ToSpace& to_3d,
                          std::vector<std::array<int, 3>>& fixed) {
@@ -108,6 +109,12 @@ void cut_off_far_corners(std::vector<Vec3>& P, std::vector<Eigen::Vector2d>& Q, 
     for (int v : ring) ring_q.push_back(Q[v]);
     const int b_next = ring[(i + 2) % m], a_prev = ring[(i + m - 2) % m];
     const double sides = std::min((Q[a] - Q[c]).norm(), (Q[b] - Q[c]).norm());
+    auto fan_of = [&](int first, int rays) {  // b, X_1 .. X_rays, a: the fan's rim, around c
+      std::vector<int> fan{b};
+      for (int j = 0; j < rays; ++j) fan.push_back(first + j);
+      fan.push_back(a);
+      return fan;
+    };
     // The fan (rays, distance) whose triangles, and the ears it leaves at a and b, are best shaped.
     double best_score = 0;
     std::vector<Eigen::Vector2d> best_points;
@@ -120,9 +127,7 @@ void cut_off_far_corners(std::vector<Vec3>& P, std::vector<Eigen::Vector2d>& Q, 
       for (double d = sides; d > 0.05 * sides; d *= 0.95) {
         const int first = int(Q.size());
         for (const auto& u : dirs) Q.push_back(Q[c] + d * u), P.push_back(to_3d(Q.back()));
-        std::vector<int> fan{b};  // b, X_1 .. X_rays, a
-        for (int j = 0; j < rays; ++j) fan.push_back(first + j);
-        fan.push_back(a);
+        const std::vector<int> fan = fan_of(first, rays);
         bool good = true;
         for (int j = 0; j < rays && good; ++j) good = inside_polygon(Q[first + j], ring_q, ring.size()) && refine.admit(P[first + j]);
         for (size_t j = 0; j + 1 < fan.size() && good; ++j) good = triangle_in_ring(Q, ring, c, fan[j], fan[j + 1]);
@@ -139,9 +144,7 @@ void cut_off_far_corners(std::vector<Vec3>& P, std::vector<Eigen::Vector2d>& Q, 
     if (best_points.empty()) continue;
     const int first = int(Q.size()), rays = int(best_points.size());
     for (const auto& x : best_points) Q.push_back(x), P.push_back(to_3d(x));
-    std::vector<int> fan{b};
-    for (int j = 0; j < rays; ++j) fan.push_back(first + j);
-    fan.push_back(a);
+    const std::vector<int> fan = fan_of(first, rays);
     for (size_t j = 0; j + 1 < fan.size(); ++j) fixed.push_back({c, fan[j], fan[j + 1]});
     std::vector<int> cut(ring.begin(), ring.begin() + i);  // ..., a, X_rays .. X_1, b, ...
     for (int j = rays - 1; j >= 0; --j) cut.push_back(first + j);
