@@ -257,11 +257,17 @@ TrimLines trim_base_meshes(const MeshTopology& mesh, const SharpChain& chain, co
       std::vector<double> stops;  // distances from the trim end
       double at = opt.max_spacing(u), step = at;
       for (; length - at > 1.5 * step && admitted(at); at += step, step *= 1.5) stops.push_back(at);
-      if (length - at > 1.5 * step) {  // the piece leaves the reach between the last stop and `at`
-        double in = stops.empty() ? 0 : stops.back(), out = at;
+      // The piece leaves the reach between the last stop and `at` (or its end, when the last step ran out
+      // of length; then a hinge only where the part beyond is longer than the part within).
+      const bool ran_out = !(length - at > 1.5 * step);
+      if (!ran_out || !admitted(length)) {
+        double in = stops.empty() ? 0 : stops.back(), out = ran_out ? length : at;
         for (int it = 0; it < 30; ++it) (admitted(0.5 * (in + out)) ? in : out) = 0.5 * (in + out);
-        while (!stops.empty() && stops.back() > (1 - kHingeRoom) * in) stops.pop_back();
-        if (length - in > 0.5 * step) stops.push_back(in);
+        if (ran_out && length - in < in) in = -1;  // no room beyond: keep the graded stops as they are
+        if (in >= 0) {
+          while (!stops.empty() && stops.back() > (1 - kHingeRoom) * in) stops.pop_back();
+          if (length - in > 0.5 * step) stops.push_back(in);
+        }
       }
       for (double s : stops) piece.points.push_back(edit.add_point(x + (y - x) * (s / length)));
     };
