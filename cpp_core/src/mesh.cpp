@@ -6,18 +6,15 @@
 
 namespace meshround {
 
-std::string format_point(const Vec3& p) {
-  std::ostringstream s;
-  s.precision(6);
-  s << "(" << p.x() << ", " << p.y() << ", " << p.z() << ")";
-  return s.str();
-}
-
 std::string format_number(double x) {
   std::ostringstream s;
   s.precision(6);
   s << x;
   return s.str();
+}
+
+std::string format_point(const Vec3& p) {
+  return "(" + format_number(p.x()) + ", " + format_number(p.y()) + ", " + format_number(p.z()) + ")";
 }
 
 MeshTopology::MeshTopology(const Points& V_, const Triangles& F_) : V(V_), F(F_) {

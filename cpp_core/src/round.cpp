@@ -183,8 +183,8 @@ RoundedChain round_one_chain(const MeshTopology& mesh, const Vec3& seed, const R
   for (int f : edit.removed)
     report.min_input_angle_deg = std::min(report.min_input_angle_deg, smallest_angle_deg(mesh.corner(f, 0), mesh.corner(f, 1), mesh.corner(f, 2)));
   // Kept facets with a vertex snapped onto a trim line are changed facets too.
-  for (const auto& [v, moved_to] : edit.moved)
-    for (const int* f = mesh.facets_begin(v); f != mesh.facets_end(v); ++f) {
+  for (const auto& snapped : edit.moved)
+    for (const int* f = mesh.facets_begin(snapped.first); f != mesh.facets_end(snapped.first); ++f) {
       if (edit.removed.count(*f)) continue;
       const int a = mesh.F(*f, 0), b = mesh.F(*f, 1), c = mesh.F(*f, 2);
       report.min_new_angle_deg = std::min(report.min_new_angle_deg, smallest_angle_deg(edit.point(a), edit.point(b), edit.point(c)));

@@ -15,6 +15,12 @@ namespace {
 
 using namespace planar;
 
+// The point in space at plane coordinates x: P[0] sits at Q[0], and e1, e2 span the polygon's plane.
+Vec3 in_space(const std::vector<Vec3>& P, const std::vector<Eigen::Vector2d>& Q, const Vec3& e1, const Vec3& e2,
+              const Eigen::Vector2d& x) {
+  return P[0] + (x.x() - Q[0].x()) * e1 + (x.y() - Q[0].y()) * e2;
+}
+
 // Lawson flips inside the polygon: an inner diagonal is flipped when the other diagonal of its (convex)
 // quadrilateral gives a larger smallest angle; the four edges around a flipped one are checked again.
 // Boundary edges never move.
@@ -94,7 +100,7 @@ std::vector<std::pair<Eigen::Vector2d, double>> mending_points(const std::vector
 void add_inner_points(std::vector<Vec3>& P, std::vector<Eigen::Vector2d>& Q, std::vector<std::array<int, 3>>& tris,
                       size_t boundary, const Refinement& refine, const Vec3& e1, const Vec3& e2) {
   const double quality = refine.quality_deg * M_PI / 180;
-  auto to_3d = [&](const Eigen::Vector2d& x) { return Vec3(P[0] + (x.x() - Q[0].x()) * e1 + (x.y() - Q[0].y()) * e2); };
+  auto to_3d = [&](const Eigen::Vector2d& x) { return in_space(P, Q, e1, e2, x); };
   auto host_of = [&](Eigen::Vector2d& x, double spacing) {  // -1: not a good place
     if (!inside_polygon(x, Q, boundary)) return -1;
     for (int round = 0;; ++round) {  // a few times over, for a corner
@@ -171,7 +177,7 @@ void add_inner_points(std::vector<Vec3>& P, std::vector<Eigen::Vector2d>& Q, std
 // a few sweeps over, each followed by flips.
 void smooth_inner_points(std::vector<Vec3>& P, std::vector<Eigen::Vector2d>& Q, std::vector<std::array<int, 3>>& tris,
                          size_t boundary, const Refinement& refine, const Vec3& e1, const Vec3& e2) {
-  auto to_3d = [&](const Eigen::Vector2d& x) { return Vec3(P[0] + (x.x() - Q[0].x()) * e1 + (x.y() - Q[0].y()) * e2); };
+  auto to_3d = [&](const Eigen::Vector2d& x) { return in_space(P, Q, e1, e2, x); };
   for (int sweep = 0; sweep < 16; ++sweep) {
     bool moved = false;
     for (size_t k = boundary; k < Q.size(); ++k) {
@@ -330,7 +336,7 @@ void triangulate_polygon(MeshEdit& edit, const std::vector<int>& polygon, const 
   std::vector<Eigen::Vector2d> Q_whole = Q;
   std::vector<std::array<int, 3>> tris = mesh_ring(P_whole, Q_whole, boundary, refine, flat, e1, e2);
   if (refine.quality_deg > 0 && flat) {
-    auto to_3d = [&](const Eigen::Vector2d& x) { return Vec3(P[0] + (x.x() - Q[0].x()) * e1 + (x.y() - Q[0].y()) * e2); };
+    auto to_3d = [&](const Eigen::Vector2d& x) { return in_space(P, Q, e1, e2, x); };
     std::vector<std::array<int, 3>> split;  // the parts split off, then the rest
     const auto rest = split_for_refinement(P, Q, boundary, refine, to_3d, split);
     if (!split.empty()) {

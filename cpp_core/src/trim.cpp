@@ -38,8 +38,8 @@ struct ContactLineDistance {
   }
 };
 
-constexpr double kFar = 1e30;
-constexpr double kSnapKeepsAngle = 10 * M_PI / 180;  // facets around a vertex snapped from afar keep this  // |signed distance| of a vertex whose side is clear without projecting it
+constexpr double kFar = 1e30;  // |signed distance| of a vertex whose side is clear without projecting it
+constexpr double kSnapKeepsAngle = 10 * M_PI / 180;  // facets around a vertex snapped from afar keep this
 
 struct VertexSide {
   double d = 0;        // signed distance (0 = on the trim line after snapping); +-kFar: side known only
@@ -81,6 +81,20 @@ bool snap_target(const MeshTopology& mesh, int v, const ContactLineDistance& dis
   }
   *q = p + t * crease;
   return std::abs(d) <= 1e-6 * (1 + std::abs(t));
+}
+
+// True if no facet around v turns over, or gets a smaller angle than min(kSnapKeepsAngle, its own), when v
+// moves to q (its neighbours where earlier snaps put them).
+bool snap_keeps_shape(const MeshTopology& mesh, const MeshEdit& edit, int v, const Vec3& q) {
+  for (const int* g = mesh.facets_begin(v); g != mesh.facets_end(v); ++g) {
+    Vec3 c[3];
+    for (int k = 0; k < 3; ++k) c[k] = mesh.F(*g, k) == v ? q : edit.point(mesh.F(*g, k));
+    const double before = smallest_angle(mesh.corner(*g, 0), mesh.corner(*g, 1), mesh.corner(*g, 2));
+    if ((c[1] - c[0]).cross(c[2] - c[0]).dot(mesh.facet_normal(*g)) <= 0 ||
+        smallest_angle(c[0], c[1], c[2]) < std::min(kSnapKeepsAngle, before))
+      return false;
+  }
+  return true;
 }
 
 double wrapped_delta(const RoundingSurface& s, double from, double to) {
@@ -215,21 +229,13 @@ TrimLines trim_base_meshes(const MeshTopology& mesh, const SharpChain& chain, co
           double shortest = INFINITY;
           for (int w : mesh.vertex_neighbours(v))  // (facets on the chain go with the band: their shape is moot)
             if (!chain_vertices.count(w)) shortest = std::min(shortest, (mesh.point(w) - mesh.point(v)).norm());
+          const double near_edges = 0.2 * shortest, near_line = 0.4 * opt.max_spacing(s.u);
           Vec3 q;
           bool on_crease = false;
-          if (std::abs(s.d) < 0.4 * std::max(opt.max_spacing(s.u), 0.5 * shortest) &&
+          if (std::abs(s.d) < std::max(near_edges, near_line) &&
               snap_target(mesh, v, distance, s.d, s.u, away, 0.02 * opt.tolerance, &q, &on_crease)) {
             const double move = (q - mesh.point(v)).norm();
-            const bool near_edges = move < 0.2 * shortest;
-            bool keeps_shape = near_edges || (on_crease && move < 0.4 * opt.max_spacing(s.u));
-            for (const int* g = mesh.facets_begin(v); g != mesh.facets_end(v) && keeps_shape && !near_edges; ++g) {
-              Vec3 c[3];  // with the neighbours snapped before it
-              for (int k = 0; k < 3; ++k) c[k] = mesh.F(*g, k) == v ? q : edit.point(mesh.F(*g, k));
-              const double before = smallest_angle(mesh.corner(*g, 0), mesh.corner(*g, 1), mesh.corner(*g, 2));
-              keeps_shape = (c[1] - c[0]).cross(c[2] - c[0]).dot(mesh.facet_normal(*g)) > 0 &&
-                            smallest_angle(c[0], c[1], c[2]) >= std::min(kSnapKeepsAngle, before);
-            }
-            if (keeps_shape) {
+            if (move < near_edges || (on_crease && move < near_line && snap_keeps_shape(mesh, edit, v, q))) {
               edit.moved[v] = q;
               s.d = 0;
               ++out.vertices_snapped;
