@@ -9,6 +9,7 @@ import FreeCADGui
 from gui_support import StatusSampler, press_task_button, redraw_seconds, screenshot, step, wait_until
 
 PREVIEW_RADII = (5.5, 6.0, 4.5, 4.0, 5.0)  # as typed, one after another (5 is the default)
+LONGEST_RUN_S = 10.0  # the progress check's stand-in engine call, at most
 
 
 def run():
@@ -17,18 +18,29 @@ def run():
 
 
 def check_progress_indicator():
-    """A long engine call (here a stand-in that sleeps 2.7 s, releasing the GIL as the engine does) runs
-    under FreeCAD's progress indicator: status text, the progress bar after FreeCAD's 2 s delay, and a
-    window that keeps processing events."""
+    """A long engine call runs under FreeCAD's progress indicator: status text, the progress bar after
+    FreeCAD's 2 s delay, and a window that keeps processing events.  The engine's stand-in sleeps on the
+    worker thread, releasing the GIL as the engine does, until the bar has shown for a while or
+    LONGEST_RUN_S have passed: one slow repaint on a loaded machine cannot end the run before the bar's
+    delay, and a bar that never shows still fails the test."""
     from MeshRound import progress
     sampler = StatusSampler()
     started = time.perf_counter()
+
+    def long_engine_call():
+        while time.perf_counter() - started < LONGEST_RUN_S:
+            shown = sampler.bar_first_seen
+            if shown is not None and time.perf_counter() - shown > 0.5:
+                return
+            time.sleep(0.05)
+
     with progress.busy("Rounding edges of a long chain"):
-        progress.wait_for(time.sleep, 2.7)
+        progress.wait_for(long_engine_call)
     seconds = time.perf_counter() - started
     sampler.stop()
     step("progress", {"seconds": seconds, "samples": len(sampler.samples), "messages": sampler.messages(),
                       "bar_seen": sampler.bar_seen(),
+                      "bar_delay": None if sampler.bar_first_seen is None else sampler.bar_first_seen - started,
                       "bar_after": sampler.bar_visible()})
 
 

@@ -110,6 +110,7 @@ class StatusSampler:
 
     def __init__(self):
         self.samples = []
+        self.bar_first_seen = None  # time.perf_counter() of the first sample that saw the bar
         bars = FreeCADGui.getMainWindow().statusBar().findChildren(QtGui.QProgressBar)
         self._bars = bars
         self._timer = QtCore.QTimer()
@@ -119,7 +120,10 @@ class StatusSampler:
     def _sample(self):
         status = FreeCADGui.getMainWindow().statusBar()
         texts = [status.currentMessage()] + [w.text() for w in status.findChildren(QtGui.QLabel)]
-        self.samples.append((" | ".join(t for t in texts if t), any(b.isVisible() for b in self._bars)))
+        visible = any(b.isVisible() for b in self._bars)
+        if visible and self.bar_first_seen is None:
+            self.bar_first_seen = time.perf_counter()
+        self.samples.append((" | ".join(t for t in texts if t), visible))
 
     def stop(self):
         self._timer.stop()
