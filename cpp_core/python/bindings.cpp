@@ -98,6 +98,7 @@ py::dict round_edges_py(const py::array& vertices, const py::array& triangles, c
     d["contacts_on_edges"] = r.contacts_on_edges, d["contacts_on_vertices"] = r.contacts_on_vertices;
     d["surface_deviation"] = r.surface_deviation, d["mesh_deviation"] = r.mesh_deviation;
     d["profile_rows"] = r.profile_rows, d["gap_facets"] = r.gap_facets, d["open_gaps"] = r.open_gaps;
+    d["edges_flipped"] = r.edges_flipped, d["vertices_removed"] = r.vertices_removed, d["vertices_slid"] = r.vertices_slid;
     chain_reports.append(d);
   }
   out["faces"] = faces, out["spines"] = spines, out["contacts"] = contacts, out["chains"] = chains, out["closed"] = closed;

@@ -6,6 +6,7 @@
 #include <set>
 
 #include "meshround/radius_law.h"
+#include "meshround/improve.h"
 #include "meshround/sew.h"
 #include "meshround/tessellate.h"
 
@@ -149,8 +150,15 @@ RoundedChain round_one_chain(const MeshTopology& mesh, const Vec3& seed, const R
   const RoundMeshStats mesh_stats = mesh_rounding_surface(surface, stations, trim, tol, edit);
   timer.done("tessellate");
   const SewStats sew = sew_round(edit, round_begin, round_begin + mesh_stats.facets, shape);
-  write_mesh(edit, V_out, F_out);
   timer.done("sew");
+  // The round's vertices (its trim lines included) stay; the rest of the new facets are tidied.
+  std::unordered_set<int> round_vertices;
+  for (size_t f = round_begin; f < round_begin + mesh_stats.facets; ++f)
+    round_vertices.insert(edit.added[f].begin(), edit.added[f].end());
+  const ImproveStats improved = improve_new_facets(edit, round_vertices, within_reach);
+  timer.done("improve");
+  write_mesh(edit, V_out, F_out);
+  timer.done("write");
 
   ChainReport& rep = out.report;
   rep.closed = chain.closed;
@@ -164,6 +172,9 @@ RoundedChain round_one_chain(const MeshTopology& mesh, const Vec3& seed, const R
   rep.profile_rows = mesh_stats.rows;
   rep.gap_facets = sew.gap_facets;
   rep.open_gaps = sew.open_gaps;
+  rep.edges_flipped = improved.flips;
+  rep.vertices_removed = improved.vertices_removed;
+  rep.vertices_slid = improved.vertices_slid;
   for (const ProfileStation& st : stations) {
     out.spine.push_back(st.centre);
     for (int k = 0; k < 2; ++k) {

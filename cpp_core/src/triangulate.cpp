@@ -260,10 +260,73 @@ std::vector<std::array<int, 3>> clip_ears(const std::vector<Vec3>& P, const std:
   return tris;
 }
 
+// True if the diagonal i-j of the counter-clockwise ring Q[0, n) runs inside it: within the corner at
+// both ends, and clear of every other side and vertex (a vertex within a hair of it blocks it).
+bool diagonal_inside(const std::vector<Eigen::Vector2d>& Q, int n, int i, int j) {
+  auto in_corner = [&](int a, int b) {
+    const auto &prev = Q[(a + n - 1) % n], &next = Q[(a + 1) % n];
+    if (cross2(Q[a], next, prev) >= 0) return cross2(Q[a], Q[b], prev) > 0 && cross2(Q[b], Q[a], next) > 0;
+    return !(cross2(Q[a], Q[b], next) >= 0 && cross2(Q[b], Q[a], prev) >= 0);
+  };
+  if (!in_corner(i, j) || !in_corner(j, i)) return false;
+  const double length = (Q[j] - Q[i]).norm(), hair = 1e-7 * length;
+  for (int k = 0; k < n; ++k) {
+    const int k1 = (k + 1) % n;
+    if (k != i && k != j) {
+      const double t = (Q[k] - Q[i]).dot(Q[j] - Q[i]) / (length * length);
+      if (t > 0 && t < 1 && std::abs(cross2(Q[i], Q[j], Q[k])) <= hair * length) return false;
+    }
+    if (k == i || k == j || k1 == i || k1 == j) continue;
+    if (segments_cross(Q[i], Q[j], Q[k], Q[k1])) return false;
+  }
+  return true;
+}
+
+// The triangulation of the counter-clockwise ring P / Q[0, boundary) with the largest smallest angle,
+// without inner points: dynamic programming over its diagonals (O(n^3)), then flips for the rest. Empty
+// when the ring is larger than kMaxExactRing or numerically degenerate (the caller then clips ears).
+constexpr size_t kMaxExactRing = 150;
+std::vector<std::array<int, 3>> best_triangulation(const std::vector<Vec3>& P, const std::vector<Eigen::Vector2d>& Q, size_t boundary) {
+  const int n = int(boundary);
+  if (boundary > kMaxExactRing || n < 3) return {};
+  std::vector<char> usable(n * n, 0);  // a side or an inner diagonal
+  for (int i = 0; i < n; ++i)
+    for (int j = i + 1; j < n; ++j)
+      usable[i * n + j] = (j == i + 1 || (i == 0 && j == n - 1)) ? 1 : diagonal_inside(Q, n, i, j);
+  std::vector<double> best(n * n, -1);  // best[i * n + j]: the sub-ring i .. j closed by i-j; -1: none
+  std::vector<int> apex(n * n, -1);
+  for (int i = 0; i + 1 < n; ++i) best[i * n + i + 1] = INFINITY;
+  for (int span = 2; span < n; ++span)
+    for (int i = 0; i + span < n; ++i) {
+      const int j = i + span;
+      if (!usable[i * n + j]) continue;
+      for (int k = i + 1; k < j; ++k) {
+        if (best[i * n + k] < 0 || best[k * n + j] < 0) continue;
+        if (cross2(Q[i], Q[k], Q[j]) <= 1e-9 * (Q[k] - Q[i]).norm() * (Q[j] - Q[k]).norm()) continue;
+        const double q = std::min({best[i * n + k], best[k * n + j], smallest_angle(P[i], P[k], P[j])});
+        if (q > best[i * n + j]) best[i * n + j] = q, apex[i * n + j] = k;
+      }
+    }
+  if (apex[n - 1] < 0) return {};
+  std::vector<std::array<int, 3>> tris;
+  std::vector<std::pair<int, int>> todo{{0, n - 1}};
+  while (!todo.empty()) {
+    const auto [i, j] = todo.back();
+    todo.pop_back();
+    if (j - i < 2) continue;
+    const int k = apex[i * n + j];
+    tris.push_back({i, k, j});
+    todo.push_back({i, k}), todo.push_back({k, j});
+  }
+  improve_by_flips(P, Q, tris);
+  return tris;
+}
+
 // Triangulates and refines the counter-clockwise ring P / Q[0, boundary); inner points are appended.
 std::vector<std::array<int, 3>> mesh_ring(std::vector<Vec3>& P, std::vector<Eigen::Vector2d>& Q, size_t boundary,
                                           const Refinement& refine, bool flat, const Vec3& e1, const Vec3& e2) {
-  std::vector<std::array<int, 3>> tris = clip_ears(P, Q, boundary);
+  std::vector<std::array<int, 3>> tris = best_triangulation(P, Q, boundary);
+  if (tris.empty()) tris = clip_ears(P, Q, boundary);
   if (refine.quality_deg > 0 && flat) {  // inner points go in the polygon's plane
     add_inner_points(P, Q, tris, boundary, refine, e1, e2);
     smooth_inner_points(P, Q, tris, boundary, refine, e1, e2);

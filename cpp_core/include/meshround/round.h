@@ -27,6 +27,7 @@ struct ChainReport {
   double mesh_deviation = 0;      // largest distance found between new facets and the surface
   int profile_rows = 0;
   int gap_facets = 0, open_gaps = 0;
+  int edges_flipped = 0, vertices_removed = 0, vertices_slid = 0;  // by the last pass, on flat ground (improve.h)
 };
 
 struct RoundedChain {
