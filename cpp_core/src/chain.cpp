@@ -288,6 +288,7 @@ double SharpChain::project_from(const Vec3& p, double s_hint, double* distance) 
 BaseMeshes collect_base_meshes(const MeshTopology& mesh, const SharpChain& chain, double reach_distance,
                                double feature_angle_deg) {
   BaseMeshes base;
+  base.reach_distance = reach_distance;
   std::unordered_set<std::uint64_t> chain_edges;
   const int n = int(chain.vertices.size());
   for (int i = 0; i < chain.num_edges(); ++i) chain_edges.insert(edge_key(chain.vertices[i], chain.vertices[(i + 1) % n]));

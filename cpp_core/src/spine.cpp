@@ -130,7 +130,11 @@ ProfileStation solve_station(const SpineContext& ctx, double s, double r) {
       throw RoundingError("radius " + format_number(r) + " is too large at " + format_point(e) +
                           ": the ball would reach past the next sharp edge or the mesh boundary at " +
                           format_point(st.contact[k]));
-    if (ctx.base.reach_limit[k].count(wall))
+    // Beyond the reach either on the base meshes' edge there, or inside one of their facets (a coarse
+    // or CAD facet runs past the reach): the band would not fit in what was collected.
+    double from_chain = 0;
+    ctx.chain.project(st.contact[k], &from_chain);
+    if (ctx.base.reach_limit[k].count(wall) || from_chain > ctx.base.reach_distance)
       throw RoundingError("the ball at " + format_point(e) + " touches the base mesh beyond the reach; "
                           "increase the reach factor");
   }

@@ -46,3 +46,33 @@ def test_broken_facets_near_the_chain_are_refused(arrays, kind, message):
     with pytest.raises(MeshRound.RoundingError, match=message):
         api.round_arrays(V, F, BOX_SEED, BOX_RADIUS)
     assert np.array_equal(V, V_before) and np.array_equal(F, F_before)
+
+
+# A slot whose walls open by 30 degrees: a ball of r = 4 touches them 3.73 r from the edge, beyond the
+# default reach of 3 r. On fine meshes that shows at the base meshes' edge; on coarse and CAD meshes the
+# contact lies inside a facet that runs past the reach, and must be refused just the same (it used to
+# make a broken mesh).
+SLOT_PROFILE = [(0, 0), (70, 0), (70, 10), (30, 10), (82, 40), (0, 40)]  # (y, z), floor z = 10 from y = 30
+
+
+@pytest.fixture(scope="module")
+def narrow_slot():
+    import cases
+    return cases.extruded_profile(SLOT_PROFILE, 60)
+
+
+@pytest.mark.parametrize("variant", ["fine", "coarse", "cad"])
+def test_a_ball_touching_beyond_the_reach_is_refused_on_any_mesh(narrow_slot, variant):
+    import cases
+    import MeshPart
+    options = dict(cases.MESH_VARIANTS[variant])
+    if "MaxLength" in options:
+        options["MaxLength"] *= 4.0
+    V, F = meshconv.mesh_to_arrays(MeshPart.meshFromShape(Shape=narrow_slot, **options))
+    V_before, F_before = V.copy(), F.copy()
+    seed = (20.0, 30.0, 10.0)
+    with pytest.raises(MeshRound.RoundingError, match=r"touches the base mesh beyond the reach; increase the reach factor"):
+        api.round_arrays(V, F, seed, 4.0)
+    assert np.array_equal(V, V_before) and np.array_equal(F, F_before)
+    result = api.round_arrays(V, F, seed, 4.0, reach=4.5)  # as the message says: room for the contacts
+    assert result.report["facets_added"] > 0 and result.report["max_deviation"] <= 0.04

@@ -70,6 +70,7 @@ struct BaseMeshes {
   std::unordered_map<int, int> side_of;        // facet -> side
   std::unordered_set<std::uint64_t> walls[2];  // edges where a side stops (sharp edge, boundary)
   std::unordered_set<std::uint64_t> reach_limit[2];  // edges where a side stops only for the reach
+  double reach_distance = 0;                   // as collected: the band must lie within it
 };
 
 BaseMeshes collect_base_meshes(const MeshTopology& mesh, const SharpChain& chain, double reach_distance,
