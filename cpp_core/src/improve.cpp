@@ -174,6 +174,8 @@ FlatSides flat_sides(const Patch& m, int v) {
   if (creases.empty()) {
     Vec3 normal = Vec3::Zero();
     for (int t : ring_tris) normal += m.normal(m.tris[t]);
+    for (int w : ring)  // flat as a whole, not just facet to facet
+      if (!m.on_plane(m.p(w), pv, normal.normalized(), (m.p(w) - pv).norm())) return {};
     out.holes.push_back({ring, normal});
     return out;
   }
