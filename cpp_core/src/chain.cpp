@@ -325,7 +325,9 @@ BaseMeshes collect_base_meshes(const MeshTopology& mesh, const SharpChain& chain
     for (int f : side == 0 ? chain.facet_a : chain.facet_b) {
       auto it = base.side_of.find(f);
       if (it != base.side_of.end() && it->second != side)
-        throw RoundingError("a facet at " + format_point(mesh.corner(f, 0)) + " lies on both sides of the chain");
+        throw RoundingError("a facet at " + format_point(mesh.corner(f, 0)) + " lies on both sides of the chain; " +
+                            "where an edge turns by about the feature angle (" + format_number(feature_angle_deg) +
+                            " deg) only some of its facets count as sharp: lower the feature angle");
       if (it == base.side_of.end()) base.side_of[f] = side, todo.push_back(f), base.facets[side].push_back(f);
     }
     while (!todo.empty()) {
