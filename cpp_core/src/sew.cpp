@@ -2,6 +2,8 @@
 
 #include <cstdio>
 #include <cstdlib>
+#include <algorithm>
+#include <cmath>
 #include <map>
 
 namespace meshround {
@@ -39,6 +41,52 @@ std::unordered_map<std::uint64_t, EdgeUse> edges_near_edit(const MeshEdit& edit)
       if (!edit.removed.count(g) && !ring.count(g)) ++e.count;
   }
   return use;
+}
+
+// A gap's side that is an input edge runs between two kept facets' corners and cannot be split without
+// splitting the kept facet beyond it too. When it is long against the gap (an end face's edge many times
+// the distance to the new points), every triangle on it is a sliver; so it gets a point where the gap's
+// new points come nearest, if that point is within the reach and the facet beyond splits into two
+// facets no worse than itself (or than kSplitShape). Returns the loop with the points inserted.
+constexpr double kLongSide = 3.0;                      // side length against its distance to new points
+constexpr double kSplitShape = 15.0 * M_PI / 180.0;    // good enough for the facet beyond, whatever it was
+std::vector<int> split_long_sides(MeshEdit& edit, const std::vector<int>& loop, const Refinement& fill) {
+  const MeshTopology& in = edit.input;
+  const int n = int(loop.size());
+  std::vector<int> out;
+  for (int i = 0; i < n; ++i) {
+    const int a = loop[i], b = loop[(i + 1) % n];
+    out.push_back(a);
+    if (a >= in.num_vertices() || b >= in.num_vertices() || !fill.admit) continue;
+    const std::vector<int> pair = in.edge_facets(a, b);
+    std::vector<int> kept;
+    for (int g : pair)
+      if (!edit.removed.count(g)) kept.push_back(g);
+    if (kept.size() != 1) continue;
+    const Vec3 pa = edit.point(a), pb = edit.point(b);
+    // Where the gap's new points come nearest to the side.
+    double nearest = INFINITY, at = -1;
+    for (int w : loop) {
+      if (w < in.num_vertices()) continue;
+      double t;
+      const double d = (closest_point_on_segment(edit.point(w), pa, pb, &t) - edit.point(w)).norm();
+      if (d < nearest && t > 0.1 && t < 0.9 && fill.admit(pa + t * (pb - pa))) nearest = d, at = t;
+    }
+    if (at < 0 || (pb - pa).norm() < kLongSide * nearest) continue;
+    const int g = kept[0];
+    int k = 0;
+    while (!(in.F(g, k) == a && in.F(g, (k + 1) % 3) == b) && !(in.F(g, k) == b && in.F(g, (k + 1) % 3) == a)) ++k;
+    const int x = in.F(g, k), y = in.F(g, (k + 1) % 3), c = in.F(g, (k + 2) % 3);
+    const Vec3 p = pa + at * (pb - pa);
+    const double worst = std::min(smallest_angle(edit.point(x), p, edit.point(c)), smallest_angle(p, edit.point(y), edit.point(c)));
+    if (worst < std::min(kSplitShape, smallest_angle(edit.point(x), edit.point(y), edit.point(c)))) continue;
+    const int v = edit.add_point(p);
+    edit.removed.insert(g);
+    edit.added.push_back({x, v, c});
+    edit.added.push_back({v, y, c});
+    out.push_back(v);
+  }
+  return out;
 }
 
 }  // namespace
@@ -97,6 +145,7 @@ SewStats sew_round(MeshEdit& edit, size_t round_begin, size_t round_end, const R
       fprintf(stderr, "\n");
     }
     const size_t before = edit.added.size();
+    loop = split_long_sides(edit, loop, fill);
     triangulate_polygon(edit, loop, normal, edit.added, fill);
     stats.gap_facets += int(edit.added.size() - before);
   }

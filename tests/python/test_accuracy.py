@@ -41,11 +41,7 @@ KNOWN_FAULTS = {
     "topology": set(),
     "locality": set(),
     "smoothness": set(),
-    # The groove's end face is a 10 mm slab running 28 mm past the reach. At its far bottom corner, the
-    # triangles under the line to the last point within the reach share 19.7 degrees: two get 9.8 at most,
-    # and one alone leaves a 1 degree sliver where that line meets the slab's near corner. The engine
-    # makes 9.82.
-    "quality": {("vee_groove", "cad")},
+    "quality": set(),
 }
 
 
