@@ -2,9 +2,10 @@
 //
 // The trim and the end caps triangulate one polygon at a time, with points they had to place before
 // the polygons were known (graded points along an edge shared by two faces, hinge points where an edge
-// leaves the reach). Across polygons some of those choices turn out poor: a corner that only one
-// triangle may take meets a graded point too far along the edge next to it. This pass looks across
-// polygons, on flat ground only, so the surface stays exactly what it was:
+// leaves the reach). Across polygons some of those choices turn out poor: two pieces of one flat face
+// split along the worse diagonal of their quad, a graded point that the facets around it would be
+// better without. This pass looks across polygons, on flat ground only, so the surface stays exactly
+// what it was:
 // - flips: the shared edge of two coplanar new facets is flipped when the other diagonal gives a larger
 //   smallest angle (Lawson);
 // - removals: a new vertex inside a flat patch of new facets, or on a straight crease between two flat
