@@ -70,12 +70,8 @@ struct Patch {
 
   double angle(const Tri& t) const { return smallest_angle(p(t[0]), p(t[1]), p(t[2])); }
   Vec3 normal(const Tri& t) const { return (p(t[1]) - p(t[0])).cross(p(t[2]) - p(t[0])); }
-  // How far from a plane still counts as on it: what float32 coordinates can hold.
-  double flat_eps(const Vec3& a, const Vec3& b) const {
-    return 1e-9 * (a - b).norm() + 1e-6 * std::max(a.cwiseAbs().maxCoeff(), b.cwiseAbs().maxCoeff());
-  }
-  bool on_plane(const Vec3& x, const Vec3& origin, const Vec3& unit_normal, double span) const {
-    return std::abs((x - origin).dot(unit_normal)) <= 1e-9 * span + 1e-6 * x.cwiseAbs().maxCoeff();
+  bool on_plane(const Vec3& x, const Vec3& origin, const Vec3& unit_normal) const {
+    return std::abs((x - origin).dot(unit_normal)) <= on_plane_slack((x - origin).norm(), x.cwiseAbs().maxCoeff());
   }
   bool admitted(const Tri& t) const { return admit(p(t[0])) || admit(p(t[1])) || admit(p(t[2])); }
 };
@@ -93,7 +89,7 @@ bool try_flip(Patch& m, int t, int u, int a, int b, std::vector<int>& touched) {
   const Vec3 n = m.normal(m.tris[t]);
   if (n.norm() == 0 || n.dot(m.normal(m.tris[u])) <= 0) return false;
   const Vec3 unit = n.normalized();
-  if (!m.on_plane(m.p(d), m.p(a), unit, (m.p(d) - m.p(a)).norm())) return false;
+  if (!m.on_plane(m.p(d), m.p(a), unit)) return false;
   const Tri t2{c, a, d}, u2{d, b, c};
   if (m.normal(t2).dot(unit) <= 0 || m.normal(u2).dot(unit) <= 0) return false;  // the quad is not convex
   if (std::min(m.angle(t2), m.angle(u2)) <= std::min(m.angle(m.tris[t]), m.angle(m.tris[u])) + 1e-9) return false;
@@ -168,21 +164,22 @@ FlatSides flat_sides(const Patch& m, int v) {
     const Vec3 nb = m.normal(m.tris[ring_tris[(i + n - 1) % n]]), na = m.normal(m.tris[ring_tris[i]]);
     if (nb.norm() == 0 || na.norm() == 0) return {};
     const Vec3 far = m.p(ring[(i + 1) % n]);
-    if (nb.dot(na) <= 0 || !m.on_plane(far, pv, nb.normalized(), (far - pv).norm())) creases.push_back(i);
+    if (nb.dot(na) <= 0 || !m.on_plane(far, pv, nb.normalized())) creases.push_back(i);
   }
   FlatSides out{star, {}};
   if (creases.empty()) {
     Vec3 normal = Vec3::Zero();
     for (int t : ring_tris) normal += m.normal(m.tris[t]);
     for (int w : ring)  // flat as a whole, not just facet to facet
-      if (!m.on_plane(m.p(w), pv, normal.normalized(), (m.p(w) - pv).norm())) return {};
+      if (!m.on_plane(m.p(w), pv, normal.normalized())) return {};
     out.holes.push_back({ring, normal});
     return out;
   }
   if (creases.size() != 2) return {};
   const Vec3 a = m.p(ring[creases[0]]), b = m.p(ring[creases[1]]);
   double s;
-  if ((closest_point_on_segment(pv, a, b, &s) - pv).norm() > m.flat_eps(a, b) || s <= 0 || s >= 1) return {};
+  const double slack = on_plane_slack((a - b).norm(), std::max(a.cwiseAbs().maxCoeff(), b.cwiseAbs().maxCoeff()));
+  if ((closest_point_on_segment(pv, a, b, &s) - pv).norm() > slack || s <= 0 || s >= 1) return {};
   for (int h = 0; h < 2; ++h) {
     std::vector<int> outline;
     Vec3 normal = Vec3::Zero();
@@ -193,7 +190,7 @@ FlatSides flat_sides(const Patch& m, int v) {
     }
     const Vec3 unit = normal.normalized();  // flat as a whole, not just facet to facet
     for (int w : outline)
-      if (!m.on_plane(m.p(w), pv, unit, (m.p(w) - pv).norm())) return {};
+      if (!m.on_plane(m.p(w), pv, unit)) return {};
     out.holes.push_back({outline, normal});
   }
   return out;
@@ -201,10 +198,7 @@ FlatSides flat_sides(const Patch& m, int v) {
 
 // Removes new vertex v (inside a flat patch, or on a straight crease between two) when triangulating
 // the hole again, each side on its own, gives a larger smallest angle around it.
-bool try_remove(Patch& m, int v, std::vector<int>& made) {
-  if (m.keep.count(v)) return false;
-  const FlatSides sides = flat_sides(m, v);
-  if (sides.holes.empty()) return false;
+bool try_remove(Patch& m, const FlatSides& sides, std::vector<int>& made) {
   double before = INFINITY;
   for (int t : sides.star) before = std::min(before, m.angle(m.tris[t]));
   std::vector<Tri> fill;
@@ -238,9 +232,7 @@ bool try_remove(Patch& m, int v, std::vector<int>& made) {
 // Slides new vertex v along the straight crease it sits on (between its two crease neighbours) to where
 // the smallest angle around it is largest, when that beats where it is. Its facets keep their turn, and
 // each a corner within the reach.
-bool try_slide(Patch& m, int v) {
-  if (m.keep.count(v)) return false;
-  const FlatSides sides = flat_sides(m, v);
+bool try_slide(Patch& m, int v, const FlatSides& sides) {
   if (sides.holes.size() != 2) return false;
   const std::vector<int>& outline = sides.holes[0].first;
   const Vec3 p = m.p(outline.front()), q = m.p(outline.back()), home = m.p(v);
@@ -288,10 +280,12 @@ ImproveStats improve_new_facets(MeshEdit& edit, const std::unordered_set<int>& k
     std::sort(candidates.begin(), candidates.end());
     bool changed = false;
     for (const auto& [q, v] : candidates) {
+      const FlatSides sides = flat_sides(m, v);
+      if (sides.holes.empty()) continue;
       std::vector<int> made;
-      if (try_remove(m, v, made)) {
+      if (try_remove(m, sides, made)) {
         ++stats.vertices_removed, stats.flips += flip_all(m, made), changed = true;
-      } else if (try_slide(m, v)) {
+      } else if (try_slide(m, v, sides)) {
         ++stats.vertices_slid, stats.flips += flip_all(m, m.vertex_tris[v]), changed = true;
       }
     }

@@ -386,13 +386,13 @@ void triangulate_polygon(MeshEdit& edit, const std::vector<int>& polygon, const 
     std::reverse(ring.begin(), ring.end()), std::reverse(P.begin(), P.end()), std::reverse(Q.begin(), Q.end());
   }
   const size_t boundary = ring.size();
-  // Flat: within what float32 input coordinates (STL, Mesh.Mesh) can hold of a plane, wherever the part
-  // sits; inner points go in the polygon's plane.
+  // Flat: on a plane up to what float32 input coordinates can hold, wherever the part sits; inner points
+  // go in the polygon's plane.
   double size = 0, off = 0, magnitude = 0;
   for (size_t i = 0; i < boundary; ++i) size = std::max(size, (P[i] - P[0]).norm());
   for (size_t i = 0; i < boundary; ++i) off = std::max(off, std::abs((P[i] - P[0]).dot(n)));
   for (size_t i = 0; i < boundary; ++i) magnitude = std::max(magnitude, P[i].cwiseAbs().maxCoeff());
-  const bool flat = off <= std::max(1e-9 * size + 1e-6 * magnitude, refine.flat_tolerance);
+  const bool flat = off <= std::max(on_plane_slack(size, magnitude), refine.flat_tolerance);
   // Two tries: the polygon whole, and with the parts refinement cannot shape split off first
   // (split_polygon.h); the one whose smallest angle is larger is kept. Triangles index P / Q.
   std::vector<Vec3> P_whole = P;

@@ -1,8 +1,11 @@
 """Broken facets near the chain are refused with a RoundingError that names the place, and the input
-arrays are left as they were: a non-manifold edge, a facet without area, a facet with a repeated vertex."""
+arrays are left as they were: a non-manifold edge, a facet without area, a facet with a repeated vertex;
+and a ball whose contacts lie beyond the reach, on any kind of mesh."""
 import numpy as np
 import pytest
 
+import cases  # first: it puts FreeCAD's modules on the path
+import MeshPart
 import MeshRound
 from MeshRound import api, meshconv
 from conftest import BOX_RADIUS, BOX_SEED
@@ -57,14 +60,11 @@ SLOT_PROFILE = [(0, 0), (70, 0), (70, 10), (30, 10), (82, 40), (0, 40)]  # (y, z
 
 @pytest.fixture(scope="module")
 def narrow_slot():
-    import cases
     return cases.extruded_profile(SLOT_PROFILE, 60)
 
 
 @pytest.mark.parametrize("variant", ["fine", "coarse", "cad"])
 def test_a_ball_touching_beyond_the_reach_is_refused_on_any_mesh(narrow_slot, variant):
-    import cases
-    import MeshPart
     options = dict(cases.MESH_VARIANTS[variant])
     if "MaxLength" in options:
         options["MaxLength"] *= 4.0

@@ -71,6 +71,9 @@ Vec3 closest_point_on_triangle(const Vec3& p, const Vec3& a, const Vec3& b, cons
 Vec3 closest_point_on_segment(const Vec3& p, const Vec3& a, const Vec3& b, double* t);
 // Smallest interior angle of triangle (a, b, c), in radians (0 for a degenerate one).
 double smallest_angle(const Vec3& a, const Vec3& b, const Vec3& c);
+// How far off a plane (or a line) a point may lie and still count as on it: a hair of the distances
+// involved, plus what float32 coordinates (STL, Mesh.Mesh) of this magnitude can hold.
+inline double on_plane_slack(double span, double magnitude) { return 1e-9 * span + 1e-6 * magnitude; }
 
 // Uniform hash grid of axis-aligned boxes: the local searches (chain distance, closest facet) stay
 // proportional to the band, not the mesh.
