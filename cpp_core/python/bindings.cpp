@@ -99,6 +99,8 @@ py::dict round_edges_py(const py::array& vertices, const py::array& triangles, c
     d["surface_deviation"] = r.surface_deviation, d["mesh_deviation"] = r.mesh_deviation;
     d["profile_rows"] = r.profile_rows, d["gap_facets"] = r.gap_facets, d["open_gaps"] = r.open_gaps;
     d["edges_flipped"] = r.edges_flipped, d["vertices_removed"] = r.vertices_removed, d["vertices_slid"] = r.vertices_slid;
+    d["thin_facets"] = r.thin_facets, d["reach_for_room"] = r.reach_for_room;
+    d["min_angle_at_reach_for_room"] = r.min_angle_at_reach_for_room;
     chain_reports.append(d);
   }
   out["faces"] = faces, out["spines"] = spines, out["contacts"] = contacts, out["chains"] = chains, out["closed"] = closed;
@@ -109,6 +111,8 @@ py::dict round_edges_py(const py::array& vertices, const py::array& triangles, c
   rep["max_deviation"] = r.max_deviation, rep["min_new_angle_deg"] = r.min_new_angle_deg;
   rep["min_input_angle_deg"] = r.min_input_angle_deg;
   rep["input_forces_small_angles"] = r.input_forces_small_angles;
+  rep["thin_facets"] = r.thin_facets, rep["thin_facets_short_of_room"] = r.thin_facets_short_of_room;
+  rep["reach_for_room"] = r.reach_for_room;
   rep["seconds_total"] = r.seconds_total, rep["seconds_per_pass"] = r.seconds;
   rep["per_chain"] = chain_reports;
   out["report"] = rep;

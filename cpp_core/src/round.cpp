@@ -111,8 +111,14 @@ void check_base_meshes(const MeshTopology& mesh, const BaseMeshes& base) {
 
 double smallest_angle_deg(const Vec3& a, const Vec3& b, const Vec3& c) { return smallest_angle(a, b, c) * 180 / M_PI; }
 
+// The reach factors (times the one asked for) tried when a chain's new facets have an angle under
+// kThinDeg that no input facet explains: a cut CAD facet far larger than the reach leaves only a strip
+// between the trim line and the reach for grading from the round's spacing to the facet's far corners.
+constexpr double kThinDeg = 10;
+constexpr double kWiderReaches[] = {1.25, 1.5, 2};
+
 RoundedChain round_one_chain(const MeshTopology& mesh, const Vec3& seed, const RoundOptions& opt, RoundReport& report,
-                             Points& V_out, Triangles& F_out) {
+                             Points& V_out, Triangles& F_out, bool probe_room = true) {
   PassTimer timer(report);
   const double r_max = opt.max_radius();
   SharpChain chain = trace_chain(mesh, seed, opt.feature_angle_deg, opt.reach * r_max);
@@ -186,21 +192,51 @@ RoundedChain round_one_chain(const MeshTopology& mesh, const Vec3& seed, const R
   out.chain = chain.points;
   out.brep = face_to_brep(surface.face);
 
-  report.facets_removed += rep.facets_removed;
-  report.facets_added += rep.facets_added;
-  report.max_deviation = std::max(report.max_deviation, rep.mesh_deviation);
-  for (const auto& f : edit.added)
-    report.min_new_angle_deg = std::min(report.min_new_angle_deg, smallest_angle_deg(edit.point(f[0]), edit.point(f[1]), edit.point(f[2])));
-  for (int f : edit.removed)
-    report.min_input_angle_deg = std::min(report.min_input_angle_deg, smallest_angle_deg(mesh.corner(f, 0), mesh.corner(f, 1), mesh.corner(f, 2)));
-  // Kept facets with a vertex snapped onto a trim line are changed facets too.
+  // Facets made (or kept with a vertex snapped onto a trim line) against the input facets they replace.
+  double min_new = 180, min_input = 180;
+  auto made = [&](const Vec3& a, const Vec3& b, const Vec3& c) {
+    const double angle = smallest_angle_deg(a, b, c);
+    min_new = std::min(min_new, angle);
+    return angle < kThinDeg;
+  };
+  for (const auto& f : edit.added) rep.thin_facets += made(edit.point(f[0]), edit.point(f[1]), edit.point(f[2]));
+  for (int f : edit.removed) min_input = std::min(min_input, smallest_angle_deg(mesh.corner(f, 0), mesh.corner(f, 1), mesh.corner(f, 2)));
   for (const auto& snapped : edit.moved)
     for (const int* f = mesh.facets_begin(snapped.first); f != mesh.facets_end(snapped.first); ++f) {
       if (edit.removed.count(*f)) continue;
       const int a = mesh.F(*f, 0), b = mesh.F(*f, 1), c = mesh.F(*f, 2);
-      report.min_new_angle_deg = std::min(report.min_new_angle_deg, smallest_angle_deg(edit.point(a), edit.point(b), edit.point(c)));
-      report.min_input_angle_deg = std::min(report.min_input_angle_deg, smallest_angle_deg(mesh.corner(*f, 0), mesh.corner(*f, 1), mesh.corner(*f, 2)));
+      rep.thin_facets += made(edit.point(a), edit.point(b), edit.point(c));
+      min_input = std::min(min_input, smallest_angle_deg(mesh.corner(*f, 0), mesh.corner(*f, 1), mesh.corner(*f, 2)));
     }
+  // Thin facets the input does not explain: would a larger reach give them room? The chain is rounded
+  // again (and thrown away) at each wider reach until one makes no facet under kThinDeg.
+  if (probe_room && rep.thin_facets > 0 && min_input >= kThinDeg) {
+    for (double wider : kWiderReaches) {
+      RoundOptions o = opt;
+      o.reach = wider * opt.reach;
+      RoundReport scratch;
+      Points V;
+      Triangles F;
+      try {
+        const RoundedChain probe = round_one_chain(mesh, seed, o, scratch, V, F, false);
+        if (probe.report.thin_facets > 0) continue;
+      } catch (const RoundingError&) {
+        continue;  // e.g. the wider reach runs into another sharp feature
+      }
+      rep.reach_for_room = o.reach, rep.min_angle_at_reach_for_room = scratch.min_new_angle_deg;
+      break;
+    }
+    timer.done("room");
+  }
+
+  report.facets_removed += rep.facets_removed;
+  report.facets_added += rep.facets_added;
+  report.max_deviation = std::max(report.max_deviation, rep.mesh_deviation);
+  report.min_new_angle_deg = std::min(report.min_new_angle_deg, min_new);
+  report.min_input_angle_deg = std::min(report.min_input_angle_deg, min_input);
+  report.thin_facets += rep.thin_facets;
+  if (rep.reach_for_room > 0) report.thin_facets_short_of_room += rep.thin_facets;
+  report.reach_for_room = std::max(report.reach_for_room, rep.reach_for_room);
   return out;
 }
 

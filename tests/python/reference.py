@@ -399,5 +399,8 @@ def score(case, inp, out, report=None, reach=3.0, feature_angle=30.0):
     res.update(smoothness_and_quality(case, geo, V0, F0, V1, F1, t0, t1, made, reach, feature_angle))
     if report is not None:
         res["input_forces_small_angles"] = bool(report.get("input_forces_small_angles", False))
+        res["thin_facets"] = report.get("thin_facets")
+        res["thin_facets_short_of_room"] = report.get("thin_facets_short_of_room")
+        res["reach_for_room"] = report.get("reach_for_room")
         res["engine_max_deviation"] = report.get("max_deviation")
     return res

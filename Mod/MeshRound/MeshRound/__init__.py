@@ -4,6 +4,7 @@
     res = MeshRound.round_edges(mesh, seeds, radius)              # console API -> RoundingResult
     obj = MeshRound.make_rounding(base_feature, seeds, radius)    # parametric Mesh feature "Rounding"
     wires = MeshRound.trace_chains(mesh, seeds)                   # the chains seeds select
+    MeshRound.quality_note(res.report)                            # why new facets are under 10 deg, if any
 
 Outside FreeCAD, put /usr/lib/freecad-python3/lib and <repo>/Mod/MeshRound on sys.path first.
 
@@ -19,6 +20,7 @@ _EXPORTS = {
     "round_edges": "api",
     "trace_chains": "api",
     "RoundingResult": "api",
+    "quality_note": "api",
     "RoundingError": "errors",
     "make_rounding": "objects.rounding",
 }

@@ -20,7 +20,7 @@ from . import inputs, meshconv, progress, shapes
 from .errors import RoundingError, require_core
 
 __all__ = ["RoundingError", "RoundingResult", "round_edges", "round_arrays", "trace_chains",
-           "trace_arrays"]
+           "trace_arrays", "quality_note"]
 
 
 @dataclasses.dataclass
@@ -73,6 +73,27 @@ def round_arrays(vertices, triangles, seeds, radius, tolerance=None, feature_ang
     result = _round(vertices, triangles, arguments)
     result.report["seconds"] = time.perf_counter() - started
     return result
+
+
+def quality_note(report):
+    """One sentence on the new facets under 10 degrees and why they are there, or "" when there are none.
+
+    Two causes are told apart: the input's own facets there are that thin (input_forces_small_angles), or
+    the input facets the round cuts are too large for the reach, which leaves too narrow a strip to grade
+    from the round's spacing to their far corners; then the engine has rounded the chain again at wider
+    reaches, and reach_for_room is the first that made none (0: none of those did).
+    """
+    thin = report.get("thin_facets", 0)
+    if not thin:
+        return ""
+    text = f"{thin} new facet(s) under 10 deg (smallest {report.get('min_new_angle_deg', 0.0):.1f} deg)"
+    if report.get("input_forces_small_angles"):
+        return text + (f": the input's own facets there have angles down to "
+                       f"{report.get('min_input_angle_deg', 0.0):.1f} deg.")
+    if report.get("reach_for_room"):
+        return text + (f": the input facets the round cuts are too large for the reach; "
+                       f"at reach {report['reach_for_room']:g} none is.")
+    return text + "."
 
 
 def trace_chains(mesh, seeds, feature_angle=30.0):

@@ -155,6 +155,9 @@ def run_round(args):
     deviation = f"{deviation:.4f} mm" if isinstance(deviation, (int, float)) else "unknown"
     print(f"meshround: {r.get('chains')} chain(s) rounded, {r.get('facets_in')} -> {r.get('facets_out')} "
           f"facets, max deviation {deviation}, {r.get('seconds', 0.0):.2f} s -> {args.output}")
+    note = MeshRound.quality_note(r)
+    if note:
+        print(f"meshround: {note}", file=sys.stderr)
 
 
 def demo_script():

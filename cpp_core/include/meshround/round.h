@@ -28,6 +28,12 @@ struct ChainReport {
   int profile_rows = 0;
   int gap_facets = 0, open_gaps = 0;
   int edges_flipped = 0, vertices_removed = 0, vertices_slid = 0;  // by the last pass, on flat ground (improve.h)
+  int thin_facets = 0;         // new facets with an angle under 10 degrees
+  // When there are thin facets and the input facets they replace have none: the smallest reach factor
+  // (of 1.25, 1.5, 2 times the one asked for) at which this chain rounds with none, and its smallest
+  // new angle there; 0 when none of those does. Large CAD facets cut by a small round leave too little
+  // room within the reach for well-shaped facets out to their far corners.
+  double reach_for_room = 0, min_angle_at_reach_for_room = 0;
 };
 
 struct RoundedChain {
@@ -44,6 +50,9 @@ struct RoundReport {
   double min_new_angle_deg = 180;    // smallest angle of any new facet (or kept one with a snapped vertex)
   double min_input_angle_deg = 180;  // smallest angle of the input facets that were cut or snapped
   bool input_forces_small_angles = false;
+  int thin_facets = 0;                 // new facets under 10 degrees, over all chains
+  int thin_facets_short_of_room = 0;   // of those, the ones on chains with a reach_for_room
+  double reach_for_room = 0;           // the largest over chains (ChainReport)
   std::map<std::string, double> seconds;  // per pass, summed over chains
   double seconds_total = 0;
 };

@@ -83,6 +83,9 @@ class Rounding:
         surfaces_feature.update_surfaces(obj, result.surfaces)
         obj.Statistics = {key: str(value) for key, value in result.report.items()
                           if not isinstance(value, (dict, list))}  # the scalars; details stay in the API
+        note = api.quality_note(result.report)
+        if note:  # in the report view, where a recompute's warnings go
+            FreeCAD.Console.PrintWarning(f"{obj.Label}: {note}\n")
 
     # No state of its own: everything lives in the properties.
     def __getstate__(self):

@@ -401,7 +401,8 @@ def _summary(report, tolerance, final_tolerance):
             f"{'-' if angle is None else f'{angle:.1f} deg'}; {report.get('seconds', 0.0):.2f} s.")
     if tolerance > final_tolerance:
         text += f" (Previewed at tolerance {tolerance:.3g} mm; OK rounds at {final_tolerance:.3g} mm.)"
-    return text
+    note = api.quality_note(report)
+    return f"{text} {note}" if note else text
 
 
 def _doc_expr(doc):
