@@ -115,7 +115,7 @@ double smallest_angle_deg(const Vec3& a, const Vec3& b, const Vec3& c) { return 
 // kThinDeg that no input facet explains: a cut CAD facet far larger than the reach leaves only a strip
 // between the trim line and the reach for grading from the round's spacing to the facet's far corners.
 constexpr double kThinDeg = 10;
-constexpr double kWiderReaches[] = {1.25, 1.5, 2};
+constexpr double kWiderReaches[] = {1.25, 1.5, 2, 3};
 
 RoundedChain round_one_chain(const MeshTopology& mesh, const Vec3& seed, const RoundOptions& opt, RoundReport& report,
                              Points& V_out, Triangles& F_out, bool probe_room = true) {

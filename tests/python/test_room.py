@@ -19,9 +19,12 @@ import reference
 MEASURE = 0.002  # / r: the yardstick's own precision, as in test_accuracy.py
 
 
-# The acute ridge (45 degree wedge, faces 30-60 mm) and the 135 degree concave corner, at r = 2 mm.
+# At r = 2 mm: the acute ridge (a convex 45 degree wedge, faces of 30-60 mm; at reach 3 it makes facets
+# of 4.6 degrees) and the V-groove (concave 60 degrees; 8.2 degrees, where its end faces' 70 mm bottom
+# edge meets the round's end).
 ROOM_CASES = {
     "acute_ridge_r2": (cases.acute_ridge, 2.0),
+    "vee_groove_r2": (cases.vee_groove, 2.0),
 }
 
 
