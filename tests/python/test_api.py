@@ -85,6 +85,20 @@ def test_report(rounded):
     assert 0 <= report["max_deviation"] <= BOX_RADIUS / 100 * 1.5
     assert report["seconds"] > 0
     json.dumps(report)  # plain Python numbers only: the CLI writes it as JSON
+    assert (MeshRound.quality_note(report) == "") == (report["thin_facets"] == 0)
+
+
+@pytest.mark.parametrize("report, says", [
+    (dict(thin_facets=3, min_new_angle_deg=2.44, input_forces_small_angles=True, min_input_angle_deg=1.8),
+     "3 new facet(s) under 10 deg (smallest 2.4 deg): the input's own facets there have angles down to 1.8 deg."),
+    (dict(thin_facets=37, min_new_angle_deg=4.57, input_forces_small_angles=False, reach_for_room=4.5),
+     "37 new facet(s) under 10 deg (smallest 4.6 deg): the input facets the round cuts are too large for "
+     "the reach; at reach 4.5 none is."),
+    (dict(thin_facets=2, min_new_angle_deg=9.2, input_forces_small_angles=False, reach_for_room=0.0),
+     "2 new facet(s) under 10 deg (smallest 9.2 deg)."),
+])
+def test_quality_note_names_the_cause(report, says):
+    assert MeshRound.quality_note(report) == says
 
 
 def test_input_mesh_is_not_modified(box):
