@@ -159,6 +159,41 @@ RoundMeshStats mesh_rounding_surface(const RoundingSurface& surface, const std::
   };
   fill_gaps(U);
 
+  // Graded rows beside a trim line whose points lie much closer together than the first inner row is far
+  // (a fine mesh cut by the contact line: a vertex just off the line leaves cut points a fifth of an
+  // element apart, and a step of that length facing a row a profile step away is a sliver). Rows at a
+  // half, a quarter, ... of that distance, while the line's typical step (its median) is under
+  // kGradedStep of the next row out; each samples the trim line's own u thinned to 0.4 of its distance.
+  struct GradedRow {
+    double v;
+    std::vector<double> U;
+  };
+  std::vector<GradedRow> graded[2];  // side A: nearest the line first; side B: nearest the line last
+  for (int side = 0; side < 2; ++side) {
+    const auto& row = side ? last_row : first_row;
+    std::vector<double> steps;  // trim steps relative to the profile step there
+    for (size_t i = 1; i < row.size(); ++i)
+      steps.push_back((row[i].u - row[i - 1].u) / profile_step(surface, stations, nv, row[i - 1].u));
+    std::sort(steps.begin(), steps.end());
+    const double typical_step = steps.empty() ? INFINITY : steps[steps.size() / 2];
+    for (int k = 1; k <= kGradedRows && typical_step < kGradedStep * 2.0 / (1 << k); ++k) {
+      const double share = 1.0 / (1 << k);  // its distance from the line, in profile steps
+      GradedRow g{v_at_angle_fraction(surface, *widest, side ? 1 - share / nv : share / nv), {u_lo}};
+      for (const RowPoint& p : row)
+        if (p.u - g.U.back() >= share * h_min(p.u) && u_hi - p.u >= share * h_min(p.u)) g.U.push_back(p.u);
+      g.U.push_back(u_hi);
+      std::vector<double> filled{g.U.front()};
+      for (size_t i = 1; i < g.U.size(); ++i) {
+        const double gap = g.U[i] - g.U[i - 1];
+        const int n = std::max(1, int(std::ceil(gap / (share * h_max(g.U[i - 1])))));
+        for (int m = 1; m <= n; ++m) filled.push_back(g.U[i - 1] + gap * m / n);
+      }
+      g.U.swap(filled);
+      graded[side].push_back(std::move(g));
+    }
+  }
+  std::reverse(graded[0].begin(), graded[0].end());
+
   std::vector<Vec3> inner;
   std::vector<std::array<RowPoint, 3>> tris;
   auto position = [&](const RowPoint& p) { return p.id >= 0 ? edit.point(p.id) : inner[-1 - p.id]; };
@@ -167,18 +202,21 @@ RoundMeshStats mesh_rounding_surface(const RoundingSurface& surface, const std::
     inner.clear();
     tris.clear();
     std::vector<std::vector<RowPoint>> rows{first_row};
-    for (int j = 1; j < nv; ++j) {
+    auto add_row = [&](const std::vector<double>& samples, double v) {
       std::vector<RowPoint> row;
-      for (size_t i = 0; i < U.size(); ++i) {
-        if (surface.closed && i + 1 == U.size()) {  // a loop's row ends where it began
-          row.push_back({row.front().id, U[i], levels[j]});
+      for (size_t i = 0; i < samples.size(); ++i) {
+        if (surface.closed && i + 1 == samples.size()) {  // a loop's row ends where it began
+          row.push_back({row.front().id, samples[i], v});
           break;
         }
-        inner.push_back(surface.value(U[i], levels[j]) + offsets.at(U[i], levels[j]));
-        row.push_back({-int(inner.size()), U[i], levels[j]});
+        inner.push_back(surface.value(samples[i], v) + offsets.at(samples[i], v));
+        row.push_back({-int(inner.size()), samples[i], v});
       }
       rows.push_back(row);
-    }
+    };
+    for (const GradedRow& g : graded[0]) add_row(g.U, g.v);
+    for (int j = 1; j < nv; ++j) add_row(U, levels[j]);
+    for (const GradedRow& g : graded[1]) add_row(g.U, g.v);
     rows.push_back(last_row);
     // Zip neighbouring rows, always taking the shorter diagonal.
     for (size_t j = 0; j + 1 < rows.size(); ++j) {
@@ -246,7 +284,7 @@ RoundMeshStats mesh_rounding_surface(const RoundingSurface& surface, const std::
     edit.added.push_back(f);
     ++stats.facets;
   }
-  stats.rows = nv + 1;
+  stats.rows = nv + 1 + int(graded[0].size() + graded[1].size());
   return stats;
 }
 

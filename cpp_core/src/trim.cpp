@@ -40,6 +40,7 @@ struct ContactLineDistance {
 
 constexpr double kFar = 1e30;  // |signed distance| of a vertex whose side is clear without projecting it
 constexpr double kSnapKeepsAngle = 10 * M_PI / 180;  // facets around a vertex snapped from afar keep this
+constexpr double kNearShaped = 0.4;                   // x its shortest edge: snapped if its facets keep shape
 
 struct VertexSide {
   double d = 0;        // signed distance (0 = on the trim line after snapping); +-kFar: side known only
@@ -222,9 +223,11 @@ TrimLines trim_base_meshes(const MeshTopology& mesh, const SharpChain& chain, co
         s.d = distance(mesh.point(v), s_chain, &s.u, &away);
         if (chain_vertices.count(v)) s.d = std::min(s.d, -1e-9);  // the chain is inside the band by definition
         // A vertex very near the line moves onto it (when that does not change the surface): no slivers.
-        // Near means within a fifth of its shortest edge; or, for a vertex on an end face's edge, within
-        // 0.4 of the line's spacing when its facets keep their shape (it would leave a sliver between
-        // the arc and itself in the end face).
+        // Near means within a fifth of its shortest edge; or within kNearShaped of it when its facets
+        // keep their shape (a fine mesh's row of vertices just off the line would leave a strip of
+        // slivers between itself and the line); or, for a vertex on an end face's edge, within 0.4 of the
+        // line's spacing when its facets keep their shape (it would leave a sliver between the arc and
+        // itself in the end face).
         else if (std::abs(s.d) > 0 && !edit.moved.count(v)) {
           double shortest = INFINITY;
           for (int w : mesh.vertex_neighbours(v))  // (facets on the chain go with the band: their shape is moot)
@@ -235,7 +238,8 @@ TrimLines trim_base_meshes(const MeshTopology& mesh, const SharpChain& chain, co
           if (std::abs(s.d) < std::max(near_edges, near_line) &&
               snap_target(mesh, v, distance, s.d, s.u, away, 0.02 * opt.tolerance, &q, &on_crease)) {
             const double move = (q - mesh.point(v)).norm();
-            if (move < near_edges || (on_crease && move < near_line && snap_keeps_shape(mesh, edit, v, q))) {
+            if (move < near_edges || ((on_crease ? move < near_line : move < kNearShaped * shortest) &&
+                                      snap_keeps_shape(mesh, edit, v, q))) {
               edit.moved[v] = q;
               s.d = 0;
               ++out.vertices_snapped;

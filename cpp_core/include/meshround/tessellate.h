@@ -4,7 +4,8 @@
 // round shares its boundary vertices with the trimmed mesh and no separate stitching is needed); the
 // rows between are spaced in v for the chordal tolerance across the profile and sampled in u on the
 // merged spacing of both trim lines, then refined wherever a facet is farther than the tolerance from
-// the surface. Neighbouring rows are zipped with the shorter diagonal.
+// the surface. Beside a trim line much finer than that, graded rows lead from its spacing to the
+// round's. Neighbouring rows are zipped with the shorter diagonal.
 #pragma once
 #include <vector>
 
@@ -28,5 +29,9 @@ int profile_segments(const std::vector<ProfileStation>& stations, double toleran
 // stations); steps along the round and its trim lines are at most kMaxStepRatio times this.
 double profile_step(const RoundingSurface& surface, const std::vector<ProfileStation>& stations, int segments, double u);
 constexpr double kMaxStepRatio = 2.5;
+// Graded rows beside a trim line (at most kGradedRows a side) while its short steps are under
+// kGradedStep times the distance of the row beyond.
+constexpr int kGradedRows = 4;
+constexpr double kGradedStep = 0.6;
 
 }  // namespace meshround
