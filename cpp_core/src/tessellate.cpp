@@ -234,9 +234,15 @@ RoundMeshStats mesh_rounding_surface(const RoundingSurface& surface, const std::
     // Refine u where a facet strays from the surface.
     std::vector<std::pair<double, double>> bad;
     stats.max_deviation = 0;
+    // Facets between a trim line and its outermost graded row are a fraction of a profile step across:
+    // their sag is a fraction of the regular rows', so the centroid alone is measured (the report's
+    // figure), and they never call for refinement.
+    const double strip_a = graded[0].empty() ? -1 : graded[0].back().v, strip_b = graded[1].empty() ? 2 : graded[1].front().v;
     for (const auto& tri : tris) {
+      const bool in_strip = std::all_of(tri.begin(), tri.end(), [&](const RowPoint& p) { return p.v <= strip_a; }) ||
+                            std::all_of(tri.begin(), tri.end(), [&](const RowPoint& p) { return p.v >= strip_b; });
       double worst = 0, from_surface = 0;
-      for (int e = 0; e < 4; ++e) {  // centroid, then the three edge midpoints
+      for (int e = 0; e < (in_strip ? 1 : 4); ++e) {  // centroid, then the three edge midpoints
         const RowPoint* a = &tri[e == 0 ? 0 : e - 1];
         const RowPoint* b2 = &tri[e == 0 ? 1 : e % 3];
         Vec3 p;
@@ -255,7 +261,7 @@ RoundMeshStats mesh_rounding_surface(const RoundingSurface& surface, const std::
         worst = std::max(worst, distance_to_surface(surface, p - offsets.at(u, v), u, v));
       }
       stats.max_deviation = std::max(stats.max_deviation, from_surface);
-      if (worst > 0.9 * tolerance)
+      if (!in_strip && worst > 0.9 * tolerance)
         bad.push_back({std::min({tri[0].u, tri[1].u, tri[2].u}), std::max({tri[0].u, tri[1].u, tri[2].u})});
     }
     if (debug) fprintf(stderr, "refine round %d: %zu facets, %zu bad, U %zu, max dev %g\n", round, tris.size(), bad.size(), U.size(), stats.max_deviation);
