@@ -118,7 +118,7 @@ constexpr double kThinDeg = 10;
 constexpr double kWiderReaches[] = {1.25, 1.5, 2, 3};
 
 RoundedChain round_one_chain(const MeshTopology& mesh, const Vec3& seed, const RoundOptions& opt, RoundReport& report,
-                             Points& V_out, Triangles& F_out, bool probe_room = true) {
+                             Points& V_out, Triangles& F_out, bool is_probe = false) {
   PassTimer timer(report);
   const double r_max = opt.max_radius();
   SharpChain chain = trace_chain(mesh, seed, opt.feature_angle_deg, opt.reach * r_max);
@@ -163,7 +163,7 @@ RoundedChain round_one_chain(const MeshTopology& mesh, const Vec3& seed, const R
     round_vertices.insert(edit.added[f].begin(), edit.added[f].end());
   const ImproveStats improved = improve_new_facets(edit, round_vertices, within_reach);
   timer.done("improve");
-  write_mesh(edit, V_out, F_out);
+  if (!is_probe) write_mesh(edit, V_out, F_out);  // a probe only counts thin facets (below)
   timer.done("write");
 
   ChainReport& rep = out.report;
@@ -190,7 +190,7 @@ RoundedChain round_one_chain(const MeshTopology& mesh, const Vec3& seed, const R
     }
   }
   out.chain = chain.points;
-  out.brep = face_to_brep(surface.face);
+  if (!is_probe) out.brep = face_to_brep(surface.face);
 
   // Facets made (or kept with a vertex snapped onto a trim line) against the input facets they replace.
   double min_new = 180, min_input = 180;
@@ -210,7 +210,7 @@ RoundedChain round_one_chain(const MeshTopology& mesh, const Vec3& seed, const R
     }
   // Thin facets the input does not explain: would a larger reach give them room? The chain is rounded
   // again (and thrown away) at each wider reach until one makes no facet under kThinDeg.
-  if (probe_room && rep.thin_facets > 0 && min_input >= kThinDeg) {
+  if (!is_probe && rep.thin_facets > 0 && min_input >= kThinDeg) {
     for (double wider : kWiderReaches) {
       RoundOptions o = opt;
       o.reach = wider * opt.reach;
@@ -218,7 +218,7 @@ RoundedChain round_one_chain(const MeshTopology& mesh, const Vec3& seed, const R
       Points V;
       Triangles F;
       try {
-        const RoundedChain probe = round_one_chain(mesh, seed, o, scratch, V, F, false);
+        const RoundedChain probe = round_one_chain(mesh, seed, o, scratch, V, F, true);
         if (probe.report.thin_facets > 0) continue;
       } catch (const RoundingError&) {
         continue;  // e.g. the wider reach runs into another sharp feature

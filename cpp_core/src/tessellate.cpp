@@ -142,22 +142,22 @@ RoundMeshStats mesh_rounding_surface(const RoundingSurface& surface, const std::
   std::sort(us.begin(), us.end());
   // A loop's inner rows span exactly one period from the first sample (their last point is their first).
   const double u_lo = us.front(), u_hi = surface.closed ? u_lo + period : us.back();
-  us.erase(std::remove_if(us.begin(), us.end(), [&](double u) { return u > u_hi; }), us.end());
-  us.push_back(u_hi);
-  std::vector<double> U{u_lo};
-  for (double u : us)
-    if (u - U.back() >= h_min(u) && u_hi - u >= h_min(u)) U.push_back(u);
-  U.push_back(u_hi);
-  auto fill_gaps = [&](std::vector<double>& samples) {
-    std::vector<double> out{samples.front()};
-    for (size_t i = 1; i < samples.size(); ++i) {
-      const double gap = samples[i] - samples[i - 1];
-      const int n = std::max(1, int(std::ceil(gap / std::min(h_max(samples[i - 1]), h_max(samples[i])))));
-      for (int k = 1; k <= n; ++k) out.push_back(samples[i - 1] + (samples[i] - samples[i - 1]) * k / n);
+  // A row's samples from sorted u values: u_lo, those at least scale x h_min from the previous one (and
+  // from u_hi), u_hi; then gaps longer than scale x h_max split evenly.
+  auto row_samples = [&](const std::vector<double>& sorted, double scale) {
+    std::vector<double> thinned{u_lo};
+    for (double u : sorted)
+      if (u - thinned.back() >= scale * h_min(u) && u_hi - u >= scale * h_min(u)) thinned.push_back(u);
+    thinned.push_back(u_hi);
+    std::vector<double> out{thinned.front()};
+    for (size_t i = 1; i < thinned.size(); ++i) {
+      const double a = thinned[i - 1], b = thinned[i];
+      const int n = std::max(1, int(std::ceil((b - a) / (scale * std::min(h_max(a), h_max(b))))));
+      for (int k = 1; k <= n; ++k) out.push_back(a + (b - a) * k / n);
     }
-    samples.swap(out);
+    return out;
   };
-  fill_gaps(U);
+  std::vector<double> U = row_samples(us, 1.0);
 
   // Graded rows beside a trim line whose points lie much closer together than the first inner row is far
   // (a fine mesh cut by the contact line: a vertex just off the line leaves cut points a fifth of an
@@ -171,6 +171,8 @@ RoundMeshStats mesh_rounding_surface(const RoundingSurface& surface, const std::
   std::vector<GradedRow> graded[2];  // side A: nearest the line first; side B: nearest the line last
   for (int side = 0; side < 2; ++side) {
     const auto& row = side ? last_row : first_row;
+    std::vector<double> line_us;
+    for (const RowPoint& p : row) line_us.push_back(p.u);
     std::vector<double> steps;  // trim steps relative to the profile step there
     for (size_t i = 1; i < row.size(); ++i)
       steps.push_back((row[i].u - row[i - 1].u) / profile_step(surface, stations, nv, row[i - 1].u));
@@ -178,18 +180,7 @@ RoundMeshStats mesh_rounding_surface(const RoundingSurface& surface, const std::
     const double typical_step = steps.empty() ? INFINITY : steps[steps.size() / 2];
     for (int k = 1; k <= kGradedRows && typical_step < kGradedStep * 2.0 / (1 << k); ++k) {
       const double share = 1.0 / (1 << k);  // its distance from the line, in profile steps
-      GradedRow g{v_at_angle_fraction(surface, *widest, side ? 1 - share / nv : share / nv), {u_lo}};
-      for (const RowPoint& p : row)
-        if (p.u - g.U.back() >= share * h_min(p.u) && u_hi - p.u >= share * h_min(p.u)) g.U.push_back(p.u);
-      g.U.push_back(u_hi);
-      std::vector<double> filled{g.U.front()};
-      for (size_t i = 1; i < g.U.size(); ++i) {
-        const double gap = g.U[i] - g.U[i - 1];
-        const int n = std::max(1, int(std::ceil(gap / (share * h_max(g.U[i - 1])))));
-        for (int m = 1; m <= n; ++m) filled.push_back(g.U[i - 1] + gap * m / n);
-      }
-      g.U.swap(filled);
-      graded[side].push_back(std::move(g));
+      graded[side].push_back({v_at_angle_fraction(surface, *widest, side ? 1 - share / nv : share / nv), row_samples(line_us, share)});
     }
   }
   std::reverse(graded[0].begin(), graded[0].end());

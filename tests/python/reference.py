@@ -383,6 +383,14 @@ def smoothness_and_quality(case, geo, V0, F0, V1, F1, t0, t1, made, reach, featu
         min_angle_input_near_deg=float(min_angles_deg(V0, F0[near0]).min()))
 
 
+MEASURE = 0.002  # / r: the yardstick's own precision (exact solids tessellated to 5e-4 r, samples)
+
+
+def allowed_deviation(row):
+    """The deviation bound of a scored row, / r: the tolerance, the input's own chordal error, MEASURE."""
+    return row["tolerance"] / row["r"] + row["input_error"] + MEASURE
+
+
 def score(case, inp, out, report=None, reach=3.0, feature_angle=30.0):
     """Every figure of one rounding of `case`: inp, out are Mesh.Mesh; report the engine's report dict."""
     geo = exact_geometry(case, reach)

@@ -4,7 +4,7 @@ Every case of cases.py x every mesh variant (fine, coarse, cad) is rounded once 
 figures (reference.score) are printed (pytest -s) and written to tests/artifacts/accuracy.json.
 Bounds, all relative to the exact answer, none hard-coded per case:
   * deviation both ways <= tolerance + the input's own tessellation error near the chain (+ the
-    yardstick's own precision, MEASURE);
+    yardstick's own precision, reference.MEASURE);
   * topology as the input's: boundary edges, no non-manifold / mis-oriented / degenerate facets, no
     self-intersection, orientation kept;
   * locality: input vertices and facets beyond reach * r are in the result bit for bit, and no facet is
@@ -29,7 +29,6 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.append(os.path.join(HERE, "..", "..", "Mod", "MeshRound"))
 ARTIFACT = os.path.join(HERE, "..", "artifacts", "accuracy.json")
 
-MEASURE = 0.002      # / r: the yardstick's own precision (exact solids tessellated to 5e-4 r, samples)
 MAX_TURN_DEG = 20.0  # a round at t = r/100 turns ~16 deg between facets
 MIN_ANGLE_DEG = 10.0
 RUNS = [(c, v) for c in cases.CONSTANT + cases.VARIABLE for v in cases.MESH_VARIANTS]
@@ -100,10 +99,6 @@ def write_artifact():
         json.dump(list(rows.values()), f, indent=1)
 
 
-def allowed_deviation(row):
-    return row["tolerance"] / row["r"] + row["input_error"] + MEASURE
-
-
 # ----------------------------------------------------------------------------------- the yardstick itself
 def test_meshes_are_float32_already():
     """Mesh.Mesh holds float32 points: no STL round trip is needed to give MeshRound what a file would."""
@@ -118,7 +113,7 @@ def test_yardstick_scores_the_cad_route_near_zero(name):
     out = cases.MeshPart.meshFromShape(Shape=case.reference, LinearDeflection=case.r_max / 1000,
                                        AngularDeflection=0.1, Relative=False)
     row = reference.score(case, case.mesh("cad"), out)
-    assert row["dev_out_to_ref"] < MEASURE and row["dev_ref_to_out"] < MEASURE
+    assert row["dev_out_to_ref"] < reference.MEASURE and row["dev_ref_to_out"] < reference.MEASURE
 
 
 def test_yardstick_sees_a_dent():
@@ -150,8 +145,8 @@ def test_reference_law_ends_as_specified(name):
 @pytest.mark.parametrize("name,variant", runs("deviation"))
 def test_deviation_both_ways(name, variant):
     row = round_case(name, variant)
-    assert row["dev_out_to_ref"] <= allowed_deviation(row)
-    assert row["dev_ref_to_out"] <= allowed_deviation(row)
+    assert row["dev_out_to_ref"] <= reference.allowed_deviation(row)
+    assert row["dev_ref_to_out"] <= reference.allowed_deviation(row)
 
 
 @pytest.mark.parametrize("name,variant", runs("topology"))

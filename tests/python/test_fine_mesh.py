@@ -14,6 +14,7 @@ import numpy as np
 import pytest
 
 import die_meshes
+import reference
 from MeshRound import api
 
 SIZE = (100.0, 60.0, 40.0)
@@ -30,24 +31,14 @@ def coarse_box():
     return V, F
 
 
-def smallest_angles_deg(V, F):
-    P = V[F]
-    angles = []
-    for k in range(3):
-        u, w = P[:, (k + 1) % 3] - P[:, k], P[:, (k + 2) % 3] - P[:, k]
-        cos = (u * w).sum(1) / (np.linalg.norm(u, axis=1) * np.linalg.norm(w, axis=1))
-        angles.append(np.degrees(np.arccos(np.clip(cos, -1, 1))))
-    return np.min(angles, axis=0)
-
-
 @pytest.mark.parametrize("k", [94, 138, 162])
 def test_fine_mesh_rounds_without_thin_facets(k):
     V, F = die_meshes.subdivide(*coarse_box(), k)
-    assert smallest_angles_deg(V, F).min() > 20
+    assert reference.min_angles_deg(V, F).min() > 20
     element = SIZE[1] / k
     assert element <= 0.13 * RADIUS
     res = api.round_arrays(V, F, [SEED], RADIUS)
-    angles = smallest_angles_deg(res.vertices, res.triangles)
+    angles = reference.min_angles_deg(res.vertices, res.triangles)
     assert angles.min() >= 10, f"{int((angles < 10).sum())} facets under 10 degrees, smallest {angles.min():.2f}"
     assert res.report["thin_facets"] == 0
     # The round is where it should be: every vertex in the band lies on the exact fillet, the cylinder

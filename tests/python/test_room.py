@@ -16,8 +16,6 @@ import pytest
 import cases
 import reference
 
-MEASURE = 0.002  # / r: the yardstick's own precision, as in test_accuracy.py
-
 
 # At r = 2 mm: the acute ridge (a convex 45 degree wedge, faces of 30-60 mm; at reach 3 it makes facets
 # of 4.6 degrees) and the V-groove (concave 60 degrees; 8.2 degrees, where its end faces' 70 mm bottom
@@ -65,7 +63,7 @@ def test_the_reach_for_room_gives_room(name):
     assert row_k["min_angle_new_deg"] >= 10 and report_k["thin_facets"] == 0
     assert report["per_chain"][0]["min_angle_at_reach_for_room"] == pytest.approx(report_k["min_new_angle_deg"])
     # Every other bar holds at that reach, as in test_accuracy.py.
-    allowed = row_k["tolerance"] / row_k["r"] + row_k["input_error"] + MEASURE
+    allowed = reference.allowed_deviation(row_k)
     assert max(row_k["dev_out_to_ref"], row_k["dev_ref_to_out"]) <= allowed
     assert row_k["boundary_edges_out"] == row_k["boundary_edges_in"]
     assert (row_k["nonmanifold_edges"], row_k["misoriented_edges"], row_k["degenerate_facets"]) == (0, 0, 0)
