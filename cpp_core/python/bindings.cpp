@@ -2,6 +2,7 @@
 #include <pybind11/eigen.h>
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
+#include <pybind11/eval.h>
 #include <pybind11/stl.h>
 
 #include <Standard_Failure.hxx>
@@ -16,7 +17,7 @@ namespace {
 Points to_points(const py::array& a, const char* what) {
   auto arr = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(a);
   if (!arr || arr.ndim() != 2 || (arr.shape(1) != 3 && arr.shape(0) > 0))
-    throw RoundingError(std::string(what) + " must be an (n, 3) array of numbers");
+    throw RoundingError(ErrorCode::InvalidInput, std::string(what) + " must be an (n, 3) array of numbers");
   Points P(arr.shape(0), 3);
   std::copy(arr.data(), arr.data() + arr.size(), P.data());
   return P;
@@ -25,11 +26,11 @@ Points to_points(const py::array& a, const char* what) {
 Triangles to_triangles(const py::array& a) {
   auto arr = py::array_t<long long, py::array::c_style | py::array::forcecast>::ensure(a);
   if (!arr || arr.ndim() != 2 || (arr.shape(1) != 3 && arr.shape(0) > 0))
-    throw RoundingError("triangles must be an (m, 3) array of vertex indices");
+    throw RoundingError(ErrorCode::InvalidInput, "triangles must be an (m, 3) array of vertex indices");
   Triangles F(arr.shape(0), 3);
   const long long* d = arr.data();
   for (py::ssize_t i = 0; i < arr.size(); ++i) {
-    if (d[i] < 0 || d[i] > 0x7fffffff) throw RoundingError("a triangle has a negative or too large vertex index");
+    if (d[i] < 0 || d[i] > 0x7fffffff) throw RoundingError(ErrorCode::InvalidInput, "a triangle has a negative or too large vertex index");
     F.data()[i] = int(d[i]);
   }
   return F;
@@ -55,7 +56,7 @@ auto guarded(F&& f) {
   try {
     return f();
   } catch (const Standard_Failure& e) {
-    throw RoundingError(std::string("geometry kernel failure: ") + e.GetMessageString());
+    throw RoundingError(ErrorCode::SurfaceFailed, std::string("geometry kernel failure: ") + e.GetMessageString());
   }
 }
 
@@ -71,7 +72,7 @@ py::dict round_edges_py(const py::array& vertices, const py::array& triangles, c
   opt.reach = reach;
   if (!radius_law.is_none()) {
     auto law = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(radius_law);
-    if (!law || law.ndim() != 2 || law.shape(1) != 4) throw RoundingError("radius_law must be a (p, 4) array of [x, y, z, r]");
+    if (!law || law.ndim() != 2 || law.shape(1) != 4) throw RoundingError(ErrorCode::InvalidInput, "radius_law must be a (p, 4) array of [x, y, z, r]");
     for (py::ssize_t i = 0; i < law.shape(0); ++i)
       opt.radius_law.push_back({Vec3(law.at(i, 0), law.at(i, 1), law.at(i, 2)), law.at(i, 3)});
   }
@@ -146,9 +147,34 @@ py::list trace_chains_py(const py::array& vertices, const py::array& triangles, 
 
 }  // namespace
 
+// RoundingError for Python: a ValueError with the message and `.code` (error_code_name), raised from C++
+// and from the workbench's own checks alike.
+const char* kErrorClass = R"(
+class RoundingError(ValueError):
+    """A rounding could not be made: str(error) names the cause and the place, .code is one of the
+    documented codes (invalid_input, no_sharp_edge, radius_too_large, ...)."""
+
+    def __init__(self, message, code="invalid_input"):
+        super().__init__(message)
+        self.code = code
+)";
+
 PYBIND11_MODULE(_meshround_core, m) {
   m.doc() = "MeshRound engine: rolling-ball rounding of sharp-edge chains on triangle meshes";
-  py::register_exception<RoundingError>(m, "RoundingError", PyExc_ValueError);
+  py::dict scope;
+  scope["__name__"] = m.attr("__name__");
+  py::exec(kErrorClass, scope, scope);
+  // Kept for the interpreter's lifetime (never destroyed after Python has finalised).
+  static py::object& error_class = *new py::object(scope["RoundingError"]);
+  m.attr("RoundingError") = error_class;
+  py::register_exception_translator([](std::exception_ptr p) {
+    try {
+      if (p) std::rethrow_exception(p);
+    } catch (const RoundingError& e) {
+      py::object err = error_class(e.what(), error_code_name(e.code));
+      PyErr_SetObject(error_class.ptr(), err.ptr());
+    }
+  });
   m.def("round_edges", &round_edges_py, py::arg("vertices"), py::arg("triangles"), py::arg("seeds"), py::arg("radius"),
         py::arg("tolerance") = 0.0, py::arg("feature_angle") = 30.0, py::arg("reach") = 3.0,
         py::arg("radius_law") = py::none(),

@@ -48,7 +48,7 @@ std::pair<int, int> nearest_sharp_edge(const MeshTopology& mesh, const Vec3& see
     }
   }
   if (edge.first < 0 || best > search_radius)
-    throw RoundingError("no sharp edge (feature angle " + format_number(feature_angle_deg) + " deg) within " +
+    throw RoundingError(ErrorCode::NoSharpEdge, "no sharp edge (feature angle " + format_number(feature_angle_deg) + " deg) within " +
                         format_number(search_radius) + " mm of the seed " + format_point(seed) +
                         "; for a blunter edge, lower the feature angle");
   return edge;
@@ -117,11 +117,11 @@ int same_side_facet(const MeshTopology& mesh, int f, int v, int came, int target
     if (y == target) return f;
     const int g = mesh.neighbour(f, v, y);
     if (g < 0)
-      throw RoundingError("the mesh is open or non-manifold at the chain vertex " + format_point(mesh.point(v)));
+      throw RoundingError(ErrorCode::NonManifoldInput, "the mesh is open or non-manifold at the chain vertex " + format_point(mesh.point(v)));
     came = y;
     f = g;
   }
-  throw RoundingError("cannot walk around the chain vertex " + format_point(mesh.point(v)));
+  throw RoundingError(ErrorCode::NonManifoldInput, "cannot walk around the chain vertex " + format_point(mesh.point(v)));
 }
 
 }  // namespace
@@ -169,14 +169,14 @@ SharpChain trace_chain(const MeshTopology& mesh, const Vec3& seed, double featur
   auto vtx = [&](int i) { return chain.vertices[(i + n) % n]; };
   for (int i = 0; i < edges; ++i) {
     const std::vector<int> fs = mesh.edge_facets(vtx(i), vtx(i + 1));
-    if (fs.size() != 2) throw RoundingError("the chain edge at " + format_point(mesh.point(vtx(i))) + " is not manifold");
+    if (fs.size() != 2) throw RoundingError(ErrorCode::NonManifoldInput, "the chain edge at " + format_point(mesh.point(vtx(i))) + " is not manifold");
     int fa = fs[0];
     if (i > 0) fa = same_side_facet(mesh, chain.facet_a[i - 1], vtx(i), vtx(i - 1), vtx(i + 1));
     chain.facet_a.push_back(fa);
     chain.facet_b.push_back(fa == fs[0] ? fs[1] : fs[0]);
   }
   if (chain.closed && same_side_facet(mesh, chain.facet_a.back(), vtx(0), vtx(-1), vtx(1)) != chain.facet_a[0])
-    throw RoundingError("the closed chain through " + format_point(seed) + " swaps its sides (a one-sided loop)");
+    throw RoundingError(ErrorCode::NonManifoldInput, "the closed chain through " + format_point(seed) + " swaps its sides (a one-sided loop)");
   chain.finish_geometry(mesh);
   return chain;
 }
@@ -325,7 +325,7 @@ BaseMeshes collect_base_meshes(const MeshTopology& mesh, const SharpChain& chain
     for (int f : side == 0 ? chain.facet_a : chain.facet_b) {
       auto it = base.side_of.find(f);
       if (it != base.side_of.end() && it->second != side)
-        throw RoundingError("a facet at " + format_point(mesh.corner(f, 0)) + " lies on both sides of the chain; " +
+        throw RoundingError(ErrorCode::NoSharpEdge, "a facet at " + format_point(mesh.corner(f, 0)) + " lies on both sides of the chain; " +
                             "where an edge turns by about the feature angle (" + format_number(feature_angle_deg) +
                             " deg) only some of its facets count as sharp: lower the feature angle");
       if (it == base.side_of.end()) base.side_of[f] = side, todo.push_back(f), base.facets[side].push_back(f);
@@ -339,7 +339,7 @@ BaseMeshes collect_base_meshes(const MeshTopology& mesh, const SharpChain& chain
         if (chain_edges.count(key)) continue;
         const int g = mesh.neighbour(f, a, b);
         if (g >= 0 && mesh.facet_degenerate(g))
-          throw RoundingError("facet " + std::to_string(g) + " at " + format_point(mesh.corner(g, 0)) +
+          throw RoundingError(ErrorCode::NonManifoldInput, "facet " + std::to_string(g) + " at " + format_point(mesh.corner(g, 0)) +
                               " near the chain is degenerate (no area); repair the mesh there first");
         if (g < 0 || (!fold_facets.count(f) && mesh.is_feature_edge(a, b, feature_angle_deg))) {
           base.walls[side].insert(key);
@@ -348,7 +348,7 @@ BaseMeshes collect_base_meshes(const MeshTopology& mesh, const SharpChain& chain
         auto it = base.side_of.find(g);
         if (it != base.side_of.end()) {
           if (it->second != side)
-            throw RoundingError("the two sides of the chain join near " + format_point(mesh.point(a)) +
+            throw RoundingError(ErrorCode::NoSharpEdge, "the two sides of the chain join near " + format_point(mesh.point(a)) +
                                 ": the sharp edges there do not separate two base meshes");
           continue;
         }

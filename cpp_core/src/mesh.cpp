@@ -6,6 +6,23 @@
 
 namespace meshround {
 
+const char* error_code_name(ErrorCode code) {
+  switch (code) {
+    case ErrorCode::InvalidInput: return "invalid_input";
+    case ErrorCode::NoSharpEdge: return "no_sharp_edge";
+    case ErrorCode::NonManifoldInput: return "non_manifold_input";
+    case ErrorCode::RadiusTooLarge: return "radius_too_large";
+    case ErrorCode::RadiusTooSmall: return "radius_too_small";
+    case ErrorCode::BeyondReach: return "beyond_reach";
+    case ErrorCode::CornerNotBlendable: return "corner_not_blendable";
+    case ErrorCode::SurfaceFailed: return "surface_failed";
+    case ErrorCode::ResultInvalid: return "result_invalid";
+    case ErrorCode::Cancelled: return "cancelled";
+    case ErrorCode::WorkLimit: return "work_limit";
+  }
+  return "invalid_input";
+}
+
 std::string format_number(double x) {
   std::ostringstream s;
   s.precision(6);
@@ -19,18 +36,18 @@ std::string format_point(const Vec3& p) {
 
 MeshTopology::MeshTopology(const Points& V_, const Triangles& F_) : V(V_), F(F_) {
   const int n = int(V.rows()), m = int(F.rows());
-  if (n == 0 || m == 0) throw RoundingError("the mesh is empty");
+  if (n == 0 || m == 0) throw RoundingError(ErrorCode::InvalidInput, "the mesh is empty");
   if (!V.allFinite()) {
     for (int i = 0; i < n; ++i)
       if (!V.row(i).allFinite())
-        throw RoundingError("vertex " + std::to_string(i) + " has a NaN or infinite coordinate");
+        throw RoundingError(ErrorCode::InvalidInput, "vertex " + std::to_string(i) + " has a NaN or infinite coordinate");
   }
   vf_start_.assign(n + 1, 0);
   for (int f = 0; f < m; ++f)
     for (int k = 0; k < 3; ++k) {
       const int v = F(f, k);
       if (v < 0 || v >= n)
-        throw RoundingError("facet " + std::to_string(f) + " refers to vertex " + std::to_string(v) +
+        throw RoundingError(ErrorCode::InvalidInput, "facet " + std::to_string(f) + " refers to vertex " + std::to_string(v) +
                             ", which does not exist");
       ++vf_start_[v + 1];
     }

@@ -11,19 +11,19 @@ constexpr double kStartEndSlope = 3.0 / 7.0;  // see the two-point law below
 RadiusLaw::RadiusLaw(const RoundOptions& options, const SharpChain& chain, double max_distance) {
   if (options.radius_law.empty()) {
     if (!(options.radius > 0) || !std::isfinite(options.radius))
-      throw RoundingError("the radius must be a positive number (got " + format_number(options.radius) + ")");
+      throw RoundingError(ErrorCode::InvalidInput, "the radius must be a positive number (got " + format_number(options.radius) + ")");
     s_ = {0.0}, r_ = {options.radius}, slope_ = {0.0};
     return;
   }
   std::vector<std::pair<double, double>> pts;
   for (const RadiusControl& c : options.radius_law) {
     if (!(c.radius > 0) || !std::isfinite(c.radius))
-      throw RoundingError("the radius control point at " + format_point(c.point) + " has radius " +
+      throw RoundingError(ErrorCode::InvalidInput, "the radius control point at " + format_point(c.point) + " has radius " +
                           format_number(c.radius) + "; radii must be positive");
     double d;
     const double s = chain.project(c.point, &d);
     if (!(d <= max_distance))
-      throw RoundingError("the radius control point at " + format_point(c.point) + " is " + format_number(d) +
+      throw RoundingError(ErrorCode::InvalidInput, "the radius control point at " + format_point(c.point) + " is " + format_number(d) +
                           " mm from the chain, farther than the reach (" + format_number(max_distance) + " mm)");
     pts.push_back({s, c.radius});
     controls_.push_back({s, c});
@@ -31,7 +31,7 @@ RadiusLaw::RadiusLaw(const RoundOptions& options, const SharpChain& chain, doubl
   std::sort(pts.begin(), pts.end());
   for (const auto& [s, r] : pts) {
     if (!s_.empty() && s - s_.back() < 1e-9 * std::max(1.0, chain.length)) {
-      if (std::abs(r - r_.back()) > 1e-12) throw RoundingError("two radius control points project to the same place on the chain");
+      if (std::abs(r - r_.back()) > 1e-12) throw RoundingError(ErrorCode::InvalidInput, "two radius control points project to the same place on the chain");
       continue;
     }
     s_.push_back(s), r_.push_back(r);

@@ -32,14 +32,14 @@ class PassTimer {
 void validate(const RoundOptions& o) {
   if (!o.radius_law.empty()) {
     for (const RadiusControl& c : o.radius_law)
-      if (!c.point.allFinite()) throw RoundingError("a radius control point has a NaN or infinite coordinate");
+      if (!c.point.allFinite()) throw RoundingError(ErrorCode::InvalidInput, "a radius control point has a NaN or infinite coordinate");
   } else if (!(o.radius > 0) || !std::isfinite(o.radius)) {
-    throw RoundingError("the radius must be a positive number (got " + format_number(o.radius) + ")");
+    throw RoundingError(ErrorCode::InvalidInput, "the radius must be a positive number (got " + format_number(o.radius) + ")");
   }
-  if (!(o.tolerance >= 0) || !std::isfinite(o.tolerance)) throw RoundingError("the tolerance must be >= 0 (0 = r / 100)");
+  if (!(o.tolerance >= 0) || !std::isfinite(o.tolerance)) throw RoundingError(ErrorCode::InvalidInput, "the tolerance must be >= 0 (0 = r / 100)");
   if (!(o.feature_angle_deg > 0 && o.feature_angle_deg < 180))
-    throw RoundingError("the feature angle must lie between 0 and 180 degrees");
-  if (!(o.reach >= 1) || !std::isfinite(o.reach)) throw RoundingError("the reach factor must be at least 1");
+    throw RoundingError(ErrorCode::InvalidInput, "the feature angle must lie between 0 and 180 degrees");
+  if (!(o.reach >= 1) || !std::isfinite(o.reach)) throw RoundingError(ErrorCode::InvalidInput, "the reach factor must be at least 1");
 }
 
 // Largest distance between the lofted surface and the exact ball at arc length s (its profile circle).
@@ -59,7 +59,7 @@ ProfileStation station(const SpineContext& ctx, const RadiusLaw& law, double s) 
   } catch (const RoundingError& e) {
     const std::string control = law.nearest_control(s);
     if (control.empty()) throw;
-    throw RoundingError(std::string(e.what()) + " (radius law, nearest to " + control + ")");
+    throw RoundingError(e.code, std::string(e.what()) + " (radius law, nearest to " + control + ")");
   }
 }
 
@@ -105,7 +105,7 @@ void check_base_meshes(const MeshTopology& mesh, const BaseMeshes& base) {
     for (int f : base.facets[side])
       for (int k = 0; k < 3; ++k)
         if (mesh.edge_facet_count(mesh.F(f, k), mesh.F(f, (k + 1) % 3)) > 2)
-          throw RoundingError("the edge at " + format_point(0.5 * (mesh.corner(f, k) + mesh.corner(f, (k + 1) % 3))) +
+          throw RoundingError(ErrorCode::NonManifoldInput, "the edge at " + format_point(0.5 * (mesh.corner(f, k) + mesh.corner(f, (k + 1) % 3))) +
                               " near the chain is non-manifold (more than two facets share it); repair the mesh there first");
 }
 
@@ -259,7 +259,7 @@ std::vector<RoundOptions> options_per_chain(const RoundOptions& opt, const std::
   }
   for (size_t k = 0; k < chains.size(); ++k)
     if (out[k].radius_law.empty())
-      throw RoundingError("no radius control point lies on the chain picked at " + format_point(picked[k]) +
+      throw RoundingError(ErrorCode::InvalidInput, "no radius control point lies on the chain picked at " + format_point(picked[k]) +
                           ": give each chain at least one (point, radius)");
   return out;
 }
@@ -273,7 +273,7 @@ std::vector<SharpChain> find_chains(const Points& V, const Triangles& F, const s
   std::vector<SharpChain> chains;
   std::set<std::vector<int>> seen;
   for (const Vec3& seed : seeds) {
-    if (!seed.allFinite()) throw RoundingError("a seed has a NaN or infinite coordinate");
+    if (!seed.allFinite()) throw RoundingError(ErrorCode::InvalidInput, "a seed has a NaN or infinite coordinate");
     SharpChain c = trace_chain(mesh, seed, feature_angle_deg, search_radius);
     std::vector<int> key = c.vertices;
     std::sort(key.begin(), key.end());
@@ -285,7 +285,7 @@ std::vector<SharpChain> find_chains(const Points& V, const Triangles& F, const s
 RoundResult round_edges(const Points& V, const Triangles& F, const std::vector<Vec3>& seeds, const RoundOptions& opt) {
   const auto start = Clock::now();
   validate(opt);
-  if (seeds.empty()) throw RoundingError("no seed given: pick a point on a sharp edge");
+  if (seeds.empty()) throw RoundingError(ErrorCode::InvalidInput, "no seed given: pick a point on a sharp edge");
   RoundResult result;
   // One seed per distinct chain, found on the input; each chain is then rounded on the latest mesh.
   std::vector<SharpChain> chains;
@@ -293,7 +293,7 @@ RoundResult round_edges(const Points& V, const Triangles& F, const std::vector<V
   const MeshTopology input(V, F);
   std::set<std::vector<int>> seen;
   for (const Vec3& seed : seeds) {
-    if (!seed.allFinite()) throw RoundingError("a seed has a NaN or infinite coordinate");
+    if (!seed.allFinite()) throw RoundingError(ErrorCode::InvalidInput, "a seed has a NaN or infinite coordinate");
     SharpChain c = trace_chain(input, seed, opt.feature_angle_deg, opt.reach * opt.max_radius());
     std::vector<int> key = c.vertices;
     std::sort(key.begin(), key.end());
@@ -302,7 +302,7 @@ RoundResult round_edges(const Points& V, const Triangles& F, const std::vector<V
     for (size_t k = 0; k < chains.size(); ++k)
       for (int v : {c.vertices.front(), c.vertices.back()})
         if (std::find(chains[k].vertices.begin(), chains[k].vertices.end(), v) != chains[k].vertices.end())
-          throw RoundingError("the chains picked at " + format_point(picked[k]) + " and " + format_point(seed) +
+          throw RoundingError(ErrorCode::CornerNotBlendable, "the chains picked at " + format_point(picked[k]) + " and " + format_point(seed) +
                               " meet at " + format_point(input.point(v)) +
                               "; chains that meet at a corner cannot be rounded together (round one of them)");
     // The middle of an edge of the chain picks the same chain again, even after other chains are rounded.

@@ -41,7 +41,7 @@ Vec3 BaseDistance::closest(const Vec3& p, double guess_radius, int* facet, int* 
     }
     if (std::sqrt(best) <= h) return q_best;  // nothing outside the searched box can be nearer
   }
-  throw RoundingError("a base mesh is empty near " + format_point(p));
+  throw RoundingError(ErrorCode::NonManifoldInput, "a base mesh is empty near " + format_point(p));
 }
 
 namespace {
@@ -90,7 +90,7 @@ ProfileStation solve_station(const SpineContext& ctx, double s, double r) {
   Eigen::Matrix3d M;
   M << nA.transpose(), nB.transpose(), t.transpose();
   if (std::abs(M.determinant()) < 1e-9)
-    throw RoundingError("the edge at " + format_point(e) + " is flat or folded back: no ball fits there");
+    throw RoundingError(ErrorCode::RadiusTooLarge, "the edge at " + format_point(e) + " is flat or folded back: no ball fits there");
   Vec3 c = e + M.inverse() * Vec3(r, r, 0);
 
   // Newton in the section plane on (dist_A(c) - r, dist_B(c) - r).
@@ -120,14 +120,14 @@ ProfileStation solve_station(const SpineContext& ctx, double s, double r) {
   }
   st.centre = c;
   if (residual > 1e-6 * std::max(1.0, r) || (c - e).dot(nA + nB) <= 0)
-    throw RoundingError("no ball of radius " + format_number(r) + " touches both base meshes at " + format_point(e) +
+    throw RoundingError(ErrorCode::RadiusTooLarge, "no ball of radius " + format_number(r) + " touches both base meshes at " + format_point(e) +
                         ": the radius is too large for the faces there");
   const bool at_end = !chain.closed && (s <= 1e-9 * chain.length || s >= chain.length * (1 - 1e-9));
   for (int k = 0; k < 2; ++k) {
     st.region[k] = region_kind(code[k]);
     const std::uint64_t wall = region_edge(ctx.mesh, facet[k], code[k]);
     if (!at_end && ctx.base.walls[k].count(wall))
-      throw RoundingError("radius " + format_number(r) + " is too large at " + format_point(e) +
+      throw RoundingError(ErrorCode::RadiusTooLarge, "radius " + format_number(r) + " is too large at " + format_point(e) +
                           ": the ball would reach past the next sharp edge or the mesh boundary at " +
                           format_point(st.contact[k]));
     // Beyond the reach either on the base meshes' edge there, or inside one of their facets (a coarse
@@ -135,7 +135,7 @@ ProfileStation solve_station(const SpineContext& ctx, double s, double r) {
     double from_chain = 0;
     ctx.chain.project(st.contact[k], &from_chain);
     if (ctx.base.reach_limit[k].count(wall) || from_chain > ctx.base.reach_distance)
-      throw RoundingError("the ball at " + format_point(e) + " touches the base mesh beyond the reach; "
+      throw RoundingError(ErrorCode::BeyondReach, "the ball at " + format_point(e) + " touches the base mesh beyond the reach; "
                           "increase the reach factor");
   }
   return st;

@@ -30,7 +30,7 @@ Handle(Geom_BSplineCurve) interpolate_raw(const std::vector<Vec3>& pts, const st
   for (int i = 0; i < int(params.size()); ++i) U->SetValue(i + 1, params[i]);
   GeomAPI_Interpolate interp(P, U, periodic, Precision::Confusion());
   interp.Perform();
-  if (!interp.IsDone()) throw RoundingError("the rounding surface could not be lofted through its profiles");
+  if (!interp.IsDone()) throw RoundingError(ErrorCode::SurfaceFailed, "the rounding surface could not be lofted through its profiles");
   return interp.Curve();
 }
 
@@ -45,7 +45,7 @@ Handle(Geom_BSplineCurve) interpolate(const std::vector<Vec3>& pts, const std::v
     for (size_t i = 0; i < pts.size(); ++i) lifted[i] = Vec3(pts[i][c], params[i] - params[0], 0);
     Handle(Geom_BSplineCurve) one = interpolate_raw(lifted, params, periodic);
     if (c == 0) out = one;
-    if (one->NbPoles() != out->NbPoles()) throw RoundingError("inconsistent profile lofts");
+    if (one->NbPoles() != out->NbPoles()) throw RoundingError(ErrorCode::SurfaceFailed, "inconsistent profile lofts");
     for (int i = 1; i <= out->NbPoles(); ++i) {
       gp_Pnt p = c == 0 ? gp_Pnt(0, 0, 0) : out->Pole(i);
       p.SetCoord(c + 1, one->Pole(i).X());
@@ -70,7 +70,7 @@ void profile_arc(const ProfileStation& st, Vec3 poles[3], double weights[3]) {
 
 RoundingSurface loft_profiles(const std::vector<ProfileStation>& stations, bool closed, double period) {
   const int n = int(stations.size());
-  if (n < 4) throw RoundingError("too few profiles to loft a rounding surface");
+  if (n < 4) throw RoundingError(ErrorCode::SurfaceFailed, "too few profiles to loft a rounding surface");
   std::vector<double> params(n);
   std::vector<Vec3> rows[3], weight_rows[3];
   for (int i = 0; i < n; ++i) {
@@ -87,16 +87,16 @@ RoundingSurface loft_profiles(const std::vector<ProfileStation>& stations, bool 
   try {
     for (int j = 0; j < 3; ++j) cp[j] = interpolate(rows[j], params, closed), cw[j] = interpolate_raw(weight_rows[j], params, closed);
   } catch (const Standard_Failure& e) {
-    throw RoundingError(std::string("lofting the rounding surface failed: ") + e.GetMessageString());
+    throw RoundingError(ErrorCode::SurfaceFailed, std::string("lofting the rounding surface failed: ") + e.GetMessageString());
   }
   const int nu = cp[0]->NbPoles();
   TColgp_Array2OfPnt poles(1, nu, 1, 3);
   TColStd_Array2OfReal weights(1, nu, 1, 3);
   for (int j = 0; j < 3; ++j) {
-    if (cp[j]->NbPoles() != nu || cw[j]->NbPoles() != nu) throw RoundingError("inconsistent profile lofts");
+    if (cp[j]->NbPoles() != nu || cw[j]->NbPoles() != nu) throw RoundingError(ErrorCode::SurfaceFailed, "inconsistent profile lofts");
     for (int i = 1; i <= nu; ++i) {
       const double w = cw[j]->Pole(i).X();
-      if (!(w > 1e-9)) throw RoundingError("the rounding surface has a non-positive weight: profiles change too fast");
+      if (!(w > 1e-9)) throw RoundingError(ErrorCode::SurfaceFailed, "the rounding surface has a non-positive weight: profiles change too fast");
       poles(i, j + 1) = gp_Pnt(cp[j]->Pole(i).XYZ() / w);
       weights(i, j + 1) = w;
     }
@@ -113,7 +113,7 @@ RoundingSurface loft_profiles(const std::vector<ProfileStation>& stations, bool 
   out.u_first = closed ? params.front() : params.front();
   out.u_last = closed ? params.front() + period : params.back();
   BRepBuilderAPI_MakeFace mk(out.surface, out.u_first, out.u_last, 0.0, 1.0, Precision::Confusion());
-  if (!mk.IsDone()) throw RoundingError("OCCT could not make a face of the rounding surface");
+  if (!mk.IsDone()) throw RoundingError(ErrorCode::SurfaceFailed, "OCCT could not make a face of the rounding surface");
   out.face = mk.Face();
   return out;
 }

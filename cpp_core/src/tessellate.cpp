@@ -119,7 +119,7 @@ RoundMeshStats mesh_rounding_surface(const RoundingSurface& surface, const std::
   for (int side = 0; side < 2; ++side) {
     auto& row = side == 0 ? first_row : last_row;
     for (const TrimPoint& tp : trim.line[side]) row.push_back({tp.vertex, tp.u, double(side)});
-    if (row.size() < 2) throw RoundingError("the trim line on side " + std::string(side ? "B" : "A") + " is empty");
+    if (row.size() < 2) throw RoundingError(ErrorCode::SurfaceFailed, "the trim line on side " + std::string(side ? "B" : "A") + " is empty");
     if (surface.closed) row.push_back({row.front().id, row.front().u + period, double(side)});
   }
 

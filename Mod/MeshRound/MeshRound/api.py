@@ -157,7 +157,8 @@ def _call_engine(name, *args, **kwargs):
     except (MemoryError, KeyboardInterrupt):
         raise
     except Exception as exc:  # a binding or engine bug must still surface as the documented error type
-        raise RoundingError(f"the rounding engine failed in {name}: {type(exc).__name__}: {exc}") from exc
+        raise RoundingError(f"the rounding engine failed in {name}: {type(exc).__name__}: {exc}",
+                            "result_invalid") from exc
 
 
 def _checked_mesh_arrays(vertices, triangles):
@@ -165,9 +166,10 @@ def _checked_mesh_arrays(vertices, triangles):
     vertices = np.asarray(vertices, dtype=np.float64).reshape(-1, 3)
     triangles = np.asarray(triangles, dtype=np.int64).reshape(-1, 3)
     if len(triangles) == 0:
-        raise RoundingError("the engine returned an empty mesh")
+        raise RoundingError("the engine returned an empty mesh", "result_invalid")
     if triangles.min() < 0 or triangles.max() >= len(vertices) or not np.all(np.isfinite(vertices)):
-        raise RoundingError("the engine returned an invalid mesh (index out of range or non-finite point)")
+        raise RoundingError("the engine returned an invalid mesh (index out of range or non-finite point)",
+                            "result_invalid")
     return vertices, triangles
 
 

@@ -144,7 +144,7 @@ def run_round(args):
         result = MeshRound.round_edges(mesh, args.seed, radius, tolerance=args.tolerance,
                                        feature_angle=args.feature_angle, reach=args.reach)
     except MeshRound.RoundingError as exc:
-        raise Failure(f"rounding failed: {exc}") from exc
+        raise Failure(f"rounding failed [{getattr(exc, 'code', 'invalid_input')}]: {exc}") from exc
     report = dict(result.report, input=args.input, output=args.output)
     writes = [(args.output, result.mesh.write)]
     if args.report:

@@ -1,7 +1,7 @@
 """RoundingError, and the compiled engine it comes from.
 
 The engine's own exception class is the public one, so `except MeshRound.RoundingError` catches errors
-raised in C++ and in Python alike.  If the compiled module is missing (not built yet), `import MeshRound`
+raised in C++ and in Python alike.  Each has `.code`, one of CODES (README, "Errors").  If the compiled module is missing (not built yet), `import MeshRound`
 still works, the workbench still loads, and every call raises a RoundingError that says how to build it.
 """
 try:
@@ -13,7 +13,16 @@ except ImportError as exc:  # not built, or built for another Python
     CORE_IMPORT_ERROR = exc
 
     class RoundingError(ValueError):
-        """A rounding could not be made; the message names the cause."""
+        """A rounding could not be made; the message names the cause, .code the kind (as the engine's)."""
+
+        def __init__(self, message, code="invalid_input"):
+            super().__init__(message)
+            self.code = code
+
+
+# Every code a RoundingError can carry (the engine's ErrorCode, cpp_core/include/meshround/types.h).
+CODES = ("invalid_input", "no_sharp_edge", "non_manifold_input", "radius_too_large", "radius_too_small",
+         "beyond_reach", "corner_not_blendable", "surface_failed", "result_invalid", "cancelled", "work_limit")
 
 
 def require_core():

@@ -15,7 +15,7 @@ def faces_from_brep(texts):
         try:
             shape.importBrepFromString(text)
         except Exception as exc:  # OCCT reports a bad text as a generic Part/Base error
-            raise RoundingError(f"the engine returned an unreadable BRep surface: {exc}") from exc
+            raise RoundingError(f"the engine returned an unreadable BRep surface: {exc}", "surface_failed") from exc
         faces.extend(shape.Faces)
     return faces
 
