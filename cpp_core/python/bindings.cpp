@@ -60,11 +60,7 @@ auto guarded(F&& f) {
   }
 }
 
-py::dict round_edges_py(const py::array& vertices, const py::array& triangles, const py::array& seeds, double radius,
-                        double tolerance, double feature_angle, double reach, const py::object& radius_law) {
-  const Points V = to_points(vertices, "vertices");
-  const Triangles F = to_triangles(triangles);
-  const Points S = to_points(seeds, "seeds");
+RoundOptions to_options(double radius, double tolerance, double feature_angle, double reach, const py::object& radius_law) {
   RoundOptions opt;
   opt.radius = radius;
   opt.tolerance = tolerance;
@@ -76,6 +72,15 @@ py::dict round_edges_py(const py::array& vertices, const py::array& triangles, c
     for (py::ssize_t i = 0; i < law.shape(0); ++i)
       opt.radius_law.push_back({Vec3(law.at(i, 0), law.at(i, 1), law.at(i, 2)), law.at(i, 3)});
   }
+  return opt;
+}
+
+py::dict round_edges_py(const py::array& vertices, const py::array& triangles, const py::array& seeds, double radius,
+                        double tolerance, double feature_angle, double reach, const py::object& radius_law) {
+  const Points V = to_points(vertices, "vertices");
+  const Triangles F = to_triangles(triangles);
+  const Points S = to_points(seeds, "seeds");
+  const RoundOptions opt = to_options(radius, tolerance, feature_angle, reach, radius_law);
   RoundResult res;
   {
     py::gil_scoped_release release;
@@ -179,6 +184,12 @@ PYBIND11_MODULE(_meshround_core, m) {
         py::arg("tolerance") = 0.0, py::arg("feature_angle") = 30.0, py::arg("reach") = 3.0,
         py::arg("radius_law") = py::none(),
         "Round the chains of sharp edges the seeds select. See CONTRACT.md for the arrays and the report.");
+  m.attr("MIN_REACH") = kMinReach;
+  m.def("validate_options", [](double radius, double tolerance, double feature_angle, double reach,
+                               const py::object& radius_law) {
+          validate_options(to_options(radius, tolerance, feature_angle, reach, radius_law));
+        }, py::arg("radius") = 1.0, py::arg("tolerance") = 0.0, py::arg("feature_angle") = 30.0, py::arg("reach") = 3.0,
+        py::arg("radius_law") = py::none(), "Raise RoundingError (invalid_input) for an option out of range, as round_edges would.");
   m.def("trace_chains", &trace_chains_py, py::arg("vertices"), py::arg("triangles"), py::arg("seeds"),
         py::arg("feature_angle") = 30.0, py::arg("search_radius") = 0.0, "The sharp-edge chains the seeds select: [{'points': (c, 3), 'closed': bool}].");
 }

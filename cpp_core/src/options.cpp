@@ -1,6 +1,7 @@
 #include "meshround/options.h"
 
 #include <algorithm>
+#include <cmath>
 
 namespace meshround {
 
@@ -8,6 +9,26 @@ double RoundOptions::max_radius() const {
   double r = radius_law.empty() ? radius : 0.0;
   for (const RadiusControl& c : radius_law) r = std::max(r, c.radius);
   return r;
+}
+
+void validate_options(const RoundOptions& o) {
+  auto invalid = [](const std::string& what) { throw RoundingError(ErrorCode::InvalidInput, what); };
+  if (o.radius_law.empty()) {
+    if (!(o.radius > 0) || !std::isfinite(o.radius))
+      invalid("the radius must be a positive number (got " + format_number(o.radius) + ")");
+  }
+  for (const RadiusControl& c : o.radius_law) {
+    if (!c.point.allFinite()) invalid("a radius control point has a NaN or infinite coordinate");
+    if (!(c.radius > 0) || !std::isfinite(c.radius))
+      invalid("the radius control point at " + format_point(c.point) + " has radius " + format_number(c.radius) +
+              "; radii must be positive");
+  }
+  if (!(o.tolerance >= 0) || !std::isfinite(o.tolerance))
+    invalid("the tolerance must be a number >= 0 (got " + format_number(o.tolerance) + "; 0 means r / 100)");
+  if (!(o.feature_angle_deg > 0 && o.feature_angle_deg < 180))
+    invalid("the feature angle must lie between 0 and 180 degrees (got " + format_number(o.feature_angle_deg) + ")");
+  if (!(o.reach >= kMinReach) || !std::isfinite(o.reach))
+    invalid("the reach factor must be at least " + format_number(kMinReach) + " (got " + format_number(o.reach) + ")");
 }
 
 }  // namespace meshround

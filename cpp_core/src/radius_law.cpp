@@ -9,17 +9,13 @@ namespace meshround {
 constexpr double kStartEndSlope = 3.0 / 7.0;  // see the two-point law below
 
 RadiusLaw::RadiusLaw(const RoundOptions& options, const SharpChain& chain, double max_distance) {
+  validate_options(options);
   if (options.radius_law.empty()) {
-    if (!(options.radius > 0) || !std::isfinite(options.radius))
-      throw RoundingError(ErrorCode::InvalidInput, "the radius must be a positive number (got " + format_number(options.radius) + ")");
     s_ = {0.0}, r_ = {options.radius}, slope_ = {0.0};
     return;
   }
   std::vector<std::pair<double, double>> pts;
   for (const RadiusControl& c : options.radius_law) {
-    if (!(c.radius > 0) || !std::isfinite(c.radius))
-      throw RoundingError(ErrorCode::InvalidInput, "the radius control point at " + format_point(c.point) + " has radius " +
-                          format_number(c.radius) + "; radii must be positive");
     double d;
     const double s = chain.project(c.point, &d);
     if (!(d <= max_distance))

@@ -29,19 +29,6 @@ class PassTimer {
   Clock::time_point t_;
 };
 
-void validate(const RoundOptions& o) {
-  if (!o.radius_law.empty()) {
-    for (const RadiusControl& c : o.radius_law)
-      if (!c.point.allFinite()) throw RoundingError(ErrorCode::InvalidInput, "a radius control point has a NaN or infinite coordinate");
-  } else if (!(o.radius > 0) || !std::isfinite(o.radius)) {
-    throw RoundingError(ErrorCode::InvalidInput, "the radius must be a positive number (got " + format_number(o.radius) + ")");
-  }
-  if (!(o.tolerance >= 0) || !std::isfinite(o.tolerance)) throw RoundingError(ErrorCode::InvalidInput, "the tolerance must be >= 0 (0 = r / 100)");
-  if (!(o.feature_angle_deg > 0 && o.feature_angle_deg < 180))
-    throw RoundingError(ErrorCode::InvalidInput, "the feature angle must lie between 0 and 180 degrees");
-  if (!(o.reach >= 1) || !std::isfinite(o.reach)) throw RoundingError(ErrorCode::InvalidInput, "the reach factor must be at least 1");
-}
-
 // Largest distance between the lofted surface and the exact ball at arc length s (its profile circle).
 double loft_error(const RoundingSurface& surface, const ProfileStation& exact) {
   double worst = 0;
@@ -268,6 +255,9 @@ std::vector<RoundOptions> options_per_chain(const RoundOptions& opt, const std::
 
 std::vector<SharpChain> find_chains(const Points& V, const Triangles& F, const std::vector<Vec3>& seeds,
                                     double feature_angle_deg, double search_radius) {
+  RoundOptions checked;
+  checked.feature_angle_deg = feature_angle_deg;
+  validate_options(checked);
   const MeshTopology mesh(V, F);
   if (!(search_radius > 0)) search_radius = 0.05 * (V.colwise().maxCoeff() - V.colwise().minCoeff()).norm();
   std::vector<SharpChain> chains;
@@ -284,7 +274,7 @@ std::vector<SharpChain> find_chains(const Points& V, const Triangles& F, const s
 
 RoundResult round_edges(const Points& V, const Triangles& F, const std::vector<Vec3>& seeds, const RoundOptions& opt) {
   const auto start = Clock::now();
-  validate(opt);
+  validate_options(opt);
   if (seeds.empty()) throw RoundingError(ErrorCode::InvalidInput, "no seed given: pick a point on a sharp edge");
   RoundResult result;
   // One seed per distinct chain, found on the input; each chain is then rounded on the latest mesh.

@@ -167,13 +167,17 @@ def test_bad_input_raises_rounding_error(box, mesh, seeds, radius, expected):
     assert isinstance(info.value, ValueError)
 
 
-@pytest.mark.parametrize("keyword, value", [
-    ("tolerance", -1.0), ("tolerance", float("nan")), ("feature_angle", 0.0), ("feature_angle", 180.0),
-    ("reach", 0.0), ("reach", float("nan")),
+@pytest.mark.parametrize("keyword, value, expected", [
+    ("tolerance", -1.0, "tolerance"), ("tolerance", float("nan"), "tolerance"),
+    ("feature_angle", 0.0, "feature angle"), ("feature_angle", 180.0, "feature angle"),
+    ("reach", 0.0, "reach factor must be at least 1"), ("reach", 0.5, "reach factor must be at least 1"),
+    ("reach", float("nan"), "reach factor"), ("tolerance", "fine", "tolerance must be a number"),
 ])
-def test_bad_options_raise_rounding_error(box, keyword, value):
-    with pytest.raises(MeshRound.RoundingError, match=keyword):
+def test_bad_options_raise_rounding_error(box, keyword, value, expected):
+    """One rule per option (the engine's validate_options): the API, the feature and the CLI agree."""
+    with pytest.raises(MeshRound.RoundingError, match=expected) as info:
         MeshRound.round_edges(box, BOX_SEED, BOX_RADIUS, **{keyword: value})
+    assert info.value.code == "invalid_input"
 
 
 def test_trace_chains_far_seed_raises(box):

@@ -215,7 +215,8 @@ def test_feature_recovers_after_a_failure(doc, rounding):
 
 @pytest.mark.parametrize("kwargs, expected", [
     (dict(radius=-1.0), "radius"), (dict(radius=float("nan")), "radius"), (dict(seeds="x"), "seeds"),
-    (dict(seeds=[]), "seed"), (dict(feature_angle=200.0), "feature_angle"), (dict(reach=0.0), "reach"),
+    (dict(seeds=[]), "seed"), (dict(feature_angle=200.0), "feature angle"), (dict(reach=0.0), "reach"),
+    (dict(reach=0.5), "reach factor must be at least 1"),
 ])
 def test_make_rounding_rejects_bad_arguments(doc, box_feature, kwargs, expected):
     arguments = dict(base=box_feature, seeds=BOX_SEED, radius=BOX_RADIUS)

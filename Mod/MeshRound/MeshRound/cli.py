@@ -56,33 +56,12 @@ def point(text):
     return tuple(_finite(p) for p in parts)
 
 
-def positive(text):
-    value = _finite(text)
-    if value <= 0:
-        raise argparse.ArgumentTypeError(f"must be > 0, got {text!r}")
-    return value
-
-
-def non_negative(text):
-    value = _finite(text)
-    if value < 0:
-        raise argparse.ArgumentTypeError(f"must be >= 0, got {text!r}")
-    return value
-
-
-def angle(text):
-    value = _finite(text)
-    if not 0 < value < 180:
-        raise argparse.ArgumentTypeError(f"must be between 0 and 180 degrees, got {text!r}")
-    return value
-
-
 def control_point(text):
     """'X,Y,Z:R' -> ((x, y, z), r)."""
     where, colon, radius = text.rpartition(":")
     if not colon:
         raise argparse.ArgumentTypeError(f"expected X,Y,Z:R, got {text!r}")
-    return point(where), positive(radius)
+    return point(where), _finite(radius)
 
 
 # ------------------------------------------------------------------------------ the parser
@@ -102,15 +81,15 @@ def build_parser():
     rnd.add_argument("--seed", metavar="X,Y,Z", type=point, action="append", required=True,
                      help="a point near a sharp edge; its whole chain is rounded (repeatable)")
     radius = rnd.add_mutually_exclusive_group(required=True)
-    radius.add_argument("--radius", metavar="R", type=positive, help="constant radius (mm)")
+    radius.add_argument("--radius", metavar="R", type=_finite, help="constant radius (mm)")
     radius.add_argument("--radius-at", metavar="X,Y,Z:R", type=control_point, action="append",
                         help="variable radius: radius R at the chain point nearest X,Y,Z (repeatable; with "
                              "several chains each point belongs to the chain nearest to it)")
-    rnd.add_argument("--tolerance", metavar="T", type=non_negative, default=None,
+    rnd.add_argument("--tolerance", metavar="T", type=_finite, default=None,
                      help="chordal tolerance (mm); default: largest radius / 100")
-    rnd.add_argument("--feature-angle", metavar="A", type=angle, default=30.0,
+    rnd.add_argument("--feature-angle", metavar="A", type=_finite, default=30.0,
                      help="an edge is sharp when its facets turn by at least A degrees (default 30)")
-    rnd.add_argument("--reach", metavar="K", type=positive, default=3.0,
+    rnd.add_argument("--reach", metavar="K", type=_finite, default=3.0,
                      help="re-mesh facets within K x radius of a chain (default 3)")
     rnd.add_argument("--report", metavar="FILE", help="write the rounding report as JSON")
 
@@ -133,6 +112,21 @@ def check_extensions(parser, args):
         if ext not in allowed:
             parser.error(f"cannot {role} '{path}': unknown mesh format '.{ext}' "
                          f"(known: {', '.join(allowed)})")
+
+
+def check_options(parser, args):
+    """Options out of range are a wrong command line (exit 2), by the engine's own rule."""
+    _, MeshRound = _import_freecad()
+    from MeshRound import inputs
+    law = None
+    if args.radius_at:
+        law = [(*p, r) for p, r in args.radius_at]
+    try:
+        inputs.check_options(radius=args.radius if args.radius is not None else 1.0,
+                             tolerance=args.tolerance or 0.0, feature_angle=args.feature_angle,
+                             reach=args.reach, radius_law=law)
+    except MeshRound.RoundingError as exc:
+        parser.error(str(exc))
 
 
 # ------------------------------------------------------------------------------ the commands
@@ -249,6 +243,7 @@ def main(argv=None):
     try:
         if args.command == "round":
             check_extensions(parser, args)
+            check_options(parser, args)
             run_round(args)
         else:
             run_demo(args.out)

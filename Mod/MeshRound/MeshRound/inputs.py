@@ -1,9 +1,10 @@
 """Checks and normalises what a caller hands to the rounding API.
 
 Every problem becomes a RoundingError whose message says which argument is wrong and why, so that the
-console, the feature's error state, the task panel and the CLI all show the same clear text.
+console, the feature's error state, the task panel and the CLI all show the same clear text.  Here only
+the kinds of the arguments are checked (a number, a point); their ranges are the engine's one rule
+(validate_options in cpp_core/src/options.cpp), asked through check_options.
 """
-import math
 import numbers
 
 import numpy as np
@@ -11,7 +12,7 @@ import numpy as np
 import FreeCAD
 import Mesh
 
-from .errors import RoundingError
+from .errors import RoundingError, require_core
 
 
 def check_mesh(mesh):
@@ -44,7 +45,8 @@ def radius_and_law(radius):
     if isinstance(radius, FreeCAD.Units.Quantity):
         radius = radius.Value  # mm
     if _is_number(radius):
-        return _positive("radius", radius), None
+        check_options(radius=_number("radius", radius))
+        return float(radius), None
     try:
         pairs = [(_point(p), r) for p, r in radius]
     except (TypeError, ValueError):
@@ -53,9 +55,8 @@ def radius_and_law(radius):
             f"got {type(radius).__name__}") from None
     if not pairs:
         raise RoundingError("variable radius needs at least one (point, radius) control point")
-    law = np.array([(*p, _positive("control point radius", r)) for p, r in pairs], dtype=np.float64)
-    if not np.all(np.isfinite(law[:, :3])):
-        raise RoundingError("control point coordinates must be finite numbers")
+    law = np.array([(*p, _number("control point radius", r)) for p, r in pairs], dtype=np.float64)
+    check_options(radius_law=law)
     return float(law[:, 3].max()), law
 
 
@@ -63,24 +64,30 @@ def tolerance_value(tolerance):
     """The core's tolerance: 0 means 'largest radius / 100'."""
     if tolerance is None:
         return 0.0
-    if not _is_number(tolerance) or math.isnan(tolerance) or tolerance < 0 or math.isinf(tolerance):
-        raise RoundingError(f"tolerance must be a finite number >= 0 (0 or None: r/100), got {tolerance!r}")
+    check_options(tolerance=_number("tolerance", tolerance))
     return float(tolerance)
 
 
 def feature_angle_value(angle):
-    if not _is_number(angle) or not 0 < angle < 180:
-        raise RoundingError(f"feature_angle must be a number of degrees in (0, 180), got {angle!r}")
+    check_options(feature_angle=_number("feature_angle", angle))
     return float(angle)
 
 
 def reach_value(reach):
-    return _positive("reach", reach)
+    check_options(reach=_number("reach", reach))
+    return float(reach)
 
 
-def _positive(name, value):
-    if not _is_number(value) or not math.isfinite(value) or value <= 0:
-        raise RoundingError(f"{name} must be a finite number > 0, got {value!r}")
+def check_options(radius=1.0, tolerance=0.0, feature_angle=30.0, reach=3.0, radius_law=None):
+    """RoundingError (invalid_input) naming the option out of range, by the engine's own rule."""
+    require_core().validate_options(radius=float(radius), tolerance=float(tolerance),
+                                    feature_angle=float(feature_angle), reach=float(reach),
+                                    radius_law=radius_law)
+
+
+def _number(name, value):
+    if not _is_number(value):
+        raise RoundingError(f"{name} must be a number, got {value!r}")
     return float(value)
 
 

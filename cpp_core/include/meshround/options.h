@@ -12,6 +12,9 @@ struct RadiusControl {
   double radius;
 };
 
+// The smallest reach factor: the base meshes must at least hold the ball's contacts.
+constexpr double kMinReach = 1.0;
+
 struct RoundOptions {
   double radius = 1.0;                 // ball radius (mm); used when `radius_law` is empty
   std::vector<RadiusControl> radius_law;  // variable radius: control points (optional); with several
@@ -20,8 +23,12 @@ struct RoundOptions {
   double feature_angle_deg = 30.0;     // an edge is sharp when its two facets turn by at least this
   double reach = 3.0;                  // base meshes are the facets within reach * r_max of the chain
 
-  double max_radius() const;
+  double max_radius() const;  // the radius, or the largest of the law's
   double effective_tolerance() const { return tolerance > 0 ? tolerance : max_radius() / 100.0; }
 };
+
+// The one place the options' ranges are checked: throws RoundingError (invalid_input) naming the first
+// option out of range. round_edges and RadiusLaw call it; the workbench and the CLI check through it.
+void validate_options(const RoundOptions& options);
 
 }  // namespace meshround

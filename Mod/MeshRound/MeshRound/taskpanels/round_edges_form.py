@@ -2,6 +2,8 @@
 import FreeCADGui
 from PySide import QtCore, QtGui
 
+from .. import errors
+
 PICK_SEED, PICK_LAW_POINT = "seed", "law"
 LAW_COLUMNS = ("X", "Y", "Z", "Radius")
 
@@ -96,7 +98,7 @@ class RoundEdgesForm(QtGui.QWidget):
         self.feature_angle = quantity_box("deg", feature_angle, minimum=1.0, maximum=179.0,
                                           tooltip="An edge is sharp when its facets turn by at least this")
         self.reach = QtGui.QDoubleSpinBox()
-        self.reach.setRange(0.5, 20.0)
+        self.reach.setRange(errors.core.MIN_REACH if errors.core else 1.0, 20.0)  # the engine's own limit
         self.reach.setSingleStep(0.5)
         self.reach.setValue(reach)
         self.reach.setToolTip("Facets within reach x radius of a chain are re-meshed")
