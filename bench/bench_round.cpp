@@ -1,7 +1,10 @@
 // One chain rounded on meshes of about 10k, 100k and 1M facets (a box, its top edge, r = 5).
 // The adjacency build is O(n); everything after it should scale with the band, not the mesh.
 // Run: build/bench/meshround_bench
+// Peak memory: run one size per process, e.g. --benchmark_filter=BM_RoundOneChain/1000000; the counters
+// rss_mesh_mb (after the input is built) and peak_rss_mb (the process's peak) then belong to that size.
 #include <benchmark/benchmark.h>
+#include <sys/resource.h>
 
 #include <cmath>
 #include <map>
@@ -12,6 +15,12 @@
 using namespace meshround;
 
 namespace {
+
+double peak_rss_mb() {
+  rusage usage{};
+  getrusage(RUSAGE_SELF, &usage);
+  return usage.ru_maxrss / 1024.0;  // Linux: kilobytes
+}
 
 // A closed box 100 x 60 x 40 of right triangles with about `facets` facets.
 std::pair<Points, Triangles> box_mesh(int facets) {
@@ -53,6 +62,7 @@ std::pair<Points, Triangles> box_mesh(int facets) {
 
 void BM_RoundOneChain(benchmark::State& state) {
   const auto [V, F] = box_mesh(int(state.range(0)));
+  const double rss_mesh = peak_rss_mb();
   RoundOptions opt;
   opt.radius = 5;
   RoundReport report;
@@ -65,6 +75,9 @@ void BM_RoundOneChain(benchmark::State& state) {
   // Facets under 10 degrees make the engine round the chain again at wider reaches (round.h): a
   // benchmark that has any measures that probe too.
   state.counters["thin_facets"] = report.thin_facets;
+  state.counters["input_arrays_mb"] = double(V.size() * sizeof(double) + F.size() * sizeof(int)) / (1 << 20);
+  state.counters["rss_mesh_mb"] = rss_mesh;
+  state.counters["peak_rss_mb"] = peak_rss_mb();
 }
 
 // The O(n) part alone: vertex-facet adjacency of the whole mesh, built once per call.

@@ -360,3 +360,30 @@ def test_import_in_freecadcmd(tmp_path):
     result = json.loads(out.read_text())
     assert result["file"].startswith(str(home / "Mod" / "MeshRound"))
     assert result["chains"] == 1 and result["solid"]
+
+
+# ------------------------------------------------------------------------------------- determinism
+DETERMINISM_RUN = """
+import sys
+sys.path.append("/usr/lib/freecad-python3/lib")
+import numpy as np
+import FreeCAD, MeshPart, Part
+sys.path.insert(0, {mod!r})  # after FreeCAD, which puts the user's Mod folders first
+import MeshRound
+assert MeshRound.__file__.startswith({mod!r})
+res = MeshRound.round_edges(MeshPart.meshFromShape(Shape=Part.makeBox(100, 60, 40), MaxLength=2.0), [(37, 60, 40), (37, 0, 40)], [((37, 60, 40), 3.0), ((90, 60, 40), 6.0),
+                            ((37, 0, 40), 4.0)])
+np.save({out!r}, np.concatenate([res.vertices.ravel(), res.triangles.ravel().astype(np.float64)]))
+"""
+
+
+def test_same_input_gives_a_bit_identical_output(box, tmp_path):
+    """Run after run, in this process and in a fresh one (other addresses, other hash seeds)."""
+    seeds = [(37, 60, 40), (37, 0, 40)]
+    law = [((37, 60, 40), 3.0), ((90, 60, 40), 6.0), ((37, 0, 40), 4.0)]
+    runs = [MeshRound.round_edges(box, seeds, law) for _ in range(2)]
+    flat = [np.concatenate([r.vertices.ravel(), r.triangles.ravel().astype(np.float64)]) for r in runs]
+    out = tmp_path / "fresh.npy"
+    run_python(DETERMINISM_RUN.format(mod=MOD_DIR, out=str(out)), cwd=tmp_path)
+    flat.append(np.load(out))
+    assert all(f.tobytes() == flat[0].tobytes() for f in flat[1:])
