@@ -1,0 +1,246 @@
+#include "guard.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <unordered_map>
+#include <unordered_set>
+#include <vector>
+
+#include "planar.h"
+
+namespace meshround {
+namespace {
+
+using Facet = std::array<int, 3>;
+
+[[noreturn]] void refuse(const std::string& what, const Vec3& where) {
+  throw RoundingError(ErrorCode::ResultInvalid,
+                      "the rounding's result failed its check (" + what + " at " + format_point(where) +
+                          "); nothing was changed. Try another radius, tolerance or reach");
+}
+
+// Edge flaws among the edges with an end in `changed`, over `facets` (ids of one MeshEdit).
+struct EdgeFlaws {
+  int boundary = 0, non_manifold = 0, misoriented = 0;
+  std::uint64_t boundary_at = 0, non_manifold_at = 0, misoriented_at = 0;  // one edge of each, for messages
+};
+
+EdgeFlaws edge_flaws(const std::vector<Facet>& facets, const std::unordered_set<int>& changed) {
+  std::unordered_map<std::uint64_t, std::pair<int, int>> edges;  // key -> (facets, sum of directions)
+  for (const Facet& f : facets)
+    for (int k = 0; k < 3; ++k) {
+      const int a = f[k], b = f[(k + 1) % 3];
+      if (!changed.count(a) && !changed.count(b)) continue;
+      auto& e = edges[edge_key(a, b)];
+      e.first += 1, e.second += a < b ? 1 : -1;
+    }
+  EdgeFlaws out;
+  for (const auto& [key, e] : edges) {
+    if (e.first == 1) ++out.boundary, out.boundary_at = key;
+    if (e.first > 2) ++out.non_manifold, out.non_manifold_at = key;
+    if (e.first == 2 && e.second != 0) ++out.misoriented, out.misoriented_at = key;
+  }
+  return out;
+}
+
+Vec3 edge_middle(const MeshEdit& edit, std::uint64_t key) {
+  return 0.5 * (edit.point(int(key >> 32)) + edit.point(int(key & 0xffffffffu)));
+}
+
+// ---------------------------------------------------------------------------------- facet crossings
+struct Triangle {
+  Vec3 p[3];
+  Vec3 normal;  // not normalised: twice the area
+};
+
+// Segment p-q passes through the inside of t (not merely touching it), t and the segment not coplanar.
+bool segment_pierces(const Vec3& p, const Vec3& q, const Triangle& t, double slack) {
+  const double scale = t.normal.norm();
+  const double dp = t.normal.dot(p - t.p[0]) / scale, dq = t.normal.dot(q - t.p[0]) / scale;
+  if (!((dp > slack && dq < -slack) || (dp < -slack && dq > slack))) return false;
+  const Vec3 x = p + dp / (dp - dq) * (q - p);
+  for (int k = 0; k < 3; ++k) {
+    const Vec3& a = t.p[k];
+    const Vec3& b = t.p[(k + 1) % 3];
+    if ((b - a).cross(x - a).dot(t.normal) / scale <= slack * (b - a).norm()) return false;
+  }
+  return true;
+}
+
+// Two coplanar triangles overlapping in more than a shared boundary.
+bool coplanar_overlap(const Triangle& s, const Triangle& t) {
+  int drop = 0;
+  t.normal.cwiseAbs().maxCoeff(&drop);
+  auto flat = [&](const Vec3& v) { return Eigen::Vector2d(v[(drop + 1) % 3], v[(drop + 2) % 3]); };
+  Eigen::Vector2d S[3], T[3];
+  for (int k = 0; k < 3; ++k) S[k] = flat(s.p[k]), T[k] = flat(t.p[k]);
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j)
+      if (planar::segments_cross(S[i], S[(i + 1) % 3], T[j], T[(j + 1) % 3])) return true;
+  auto strictly_inside = [](const Eigen::Vector2d& x, const Eigen::Vector2d* P) {
+    const double a = planar::cross2(P[0], P[1], x), b = planar::cross2(P[1], P[2], x), c = planar::cross2(P[2], P[0], x);
+    return (a > 0 && b > 0 && c > 0) || (a < 0 && b < 0 && c < 0);
+  };
+  const Eigen::Vector2d sc = (S[0] + S[1] + S[2]) / 3, tc = (T[0] + T[1] + T[2]) / 3;
+  return strictly_inside(sc, T) || strictly_inside(tc, S);
+}
+
+bool triangles_cross(const Triangle& s, const Triangle& t, double slack) {
+  bool coplanar = true;
+  const double tn = t.normal.norm();
+  for (const Vec3& v : s.p) coplanar &= std::abs(t.normal.dot(v - t.p[0])) / tn <= slack;
+  if (coplanar) return coplanar_overlap(s, t);
+  for (int k = 0; k < 3; ++k)
+    if (segment_pierces(s.p[k], s.p[(k + 1) % 3], t, slack) || segment_pierces(t.p[k], t.p[(k + 1) % 3], s, slack))
+      return true;
+  return false;
+}
+
+// Uniform grid over the boxes of the candidate facets; facets spanning many cells are kept apart.
+class FacetGrid {
+ public:
+  FacetGrid(double cell) : cell_(cell) {}
+  void insert(int id, const Vec3& lo, const Vec3& hi) {
+    const auto a = cell_of(lo), b = cell_of(hi);
+    if ((b[0] - a[0] + 1) * (b[1] - a[1] + 1) * (b[2] - a[2] + 1) > kMaxCells) {
+      oversized_.push_back(id);
+      return;
+    }
+    for (long i = a[0]; i <= b[0]; ++i)
+      for (long j = a[1]; j <= b[1]; ++j)
+        for (long k = a[2]; k <= b[2]; ++k) cells_[key(i, j, k)].push_back(id);
+  }
+  template <class Visit>
+  void query(const Vec3& lo, const Vec3& hi, Visit&& visit) const {
+    const auto a = cell_of(lo), b = cell_of(hi);
+    for (long i = a[0]; i <= b[0]; ++i)
+      for (long j = a[1]; j <= b[1]; ++j)
+        for (long k = a[2]; k <= b[2]; ++k) {
+          auto it = cells_.find(key(i, j, k));
+          if (it != cells_.end())
+            for (int id : it->second) visit(id);
+        }
+    for (int id : oversized_) visit(id);
+  }
+
+ private:
+  static constexpr long kMaxCells = 512;  // a box over more cells goes to the oversized list
+  std::array<long, 3> cell_of(const Vec3& p) const {
+    return {long(std::floor(p.x() / cell_)), long(std::floor(p.y() / cell_)), long(std::floor(p.z() / cell_))};
+  }
+  static std::uint64_t key(long i, long j, long k) {
+    return (std::uint64_t(i & 0x1fffff) << 42) | (std::uint64_t(j & 0x1fffff) << 21) | std::uint64_t(k & 0x1fffff);
+  }
+  double cell_;
+  std::unordered_map<std::uint64_t, std::vector<int>> cells_;
+  std::vector<int> oversized_;
+};
+
+bool share_vertex(const Facet& a, const Facet& b) {
+  for (int x : a)
+    for (int y : b)
+      if (x == y) return true;
+  return false;
+}
+
+// A made facet crossing another made facet, or a kept facet of `kept`: the place of the first found.
+bool find_crossing(const MeshEdit& edit, const std::vector<Facet>& kept, double slack, Vec3* where) {
+  const std::vector<Facet>& made = edit.added;
+  if (made.empty()) return false;
+  std::vector<Facet> all(made);
+  all.insert(all.end(), kept.begin(), kept.end());
+  std::vector<Triangle> tri(all.size());
+  std::vector<std::pair<Vec3, Vec3>> box(all.size());
+  double edge_sum = 0;
+  for (size_t i = 0; i < all.size(); ++i) {
+    for (int k = 0; k < 3; ++k) tri[i].p[k] = edit.point(all[i][k]);
+    tri[i].normal = (tri[i].p[1] - tri[i].p[0]).cross(tri[i].p[2] - tri[i].p[0]);
+    box[i] = {tri[i].p[0].cwiseMin(tri[i].p[1]).cwiseMin(tri[i].p[2]), tri[i].p[0].cwiseMax(tri[i].p[1]).cwiseMax(tri[i].p[2])};
+    if (i < made.size()) edge_sum += (box[i].second - box[i].first).norm();
+  }
+  FacetGrid grid(std::max(2 * edge_sum / double(made.size()), 1e-9));
+  for (size_t i = 0; i < all.size(); ++i) grid.insert(int(i), box[i].first, box[i].second);
+  for (size_t i = 0; i < made.size(); ++i) {
+    bool hit = false;
+    const Vec3 lo = box[i].first.array() - slack, hi = box[i].second.array() + slack;
+    grid.query(lo, hi, [&](int j) {
+      if (hit || size_t(j) == i || (size_t(j) < made.size() && size_t(j) < i)) return;
+      if ((box[j].first.array() > hi.array()).any() || (box[j].second.array() < lo.array()).any()) return;
+      if (share_vertex(all[i], all[j])) return;
+      if (tri[i].normal.squaredNorm() == 0 || tri[j].normal.squaredNorm() == 0) return;  // counted as degenerate
+      hit = triangles_cross(tri[i], tri[j], slack);
+    });
+    if (hit) {
+      *where = (tri[i].p[0] + tri[i].p[1] + tri[i].p[2]) / 3;
+      return true;
+    }
+  }
+  return false;
+}
+
+}  // namespace
+
+void check_result(const MeshEdit& edit, const SharpChain& chain, double reach) {
+  const MeshTopology& in = edit.input;
+  const int n_in = in.num_vertices();
+  // The changed vertices: those of removed, made and moved facets. Every edge with an end among them
+  // has all its facets among the input facets around them (before) or those plus the made ones (after).
+  std::unordered_set<int> changed;
+  for (int f : edit.removed)
+    for (int k = 0; k < 3; ++k) changed.insert(in.F(f, k));
+  for (const Facet& f : edit.added) changed.insert(f.begin(), f.end());
+  for (const auto& moved : edit.moved) changed.insert(moved.first);
+  std::unordered_set<int> around;
+  for (int v : changed)
+    if (v < n_in)
+      for (const int* f = in.facets_begin(v); f != in.facets_end(v); ++f) around.insert(*f);
+  std::vector<Facet> before, kept;
+  for (int f : around) {
+    const Facet facet{in.F(f, 0), in.F(f, 1), in.F(f, 2)};
+    before.push_back(facet);
+    if (!edit.removed.count(f)) kept.push_back(facet);
+  }
+  std::vector<Facet> after(kept);
+  after.insert(after.end(), edit.added.begin(), edit.added.end());
+
+  const EdgeFlaws was = edge_flaws(before, changed), is = edge_flaws(after, changed);
+  if (is.boundary > was.boundary) refuse("a new boundary edge, a hole in the mesh", edge_middle(edit, is.boundary_at));
+  if (is.non_manifold > was.non_manifold)
+    refuse("a new non-manifold edge, shared by more than two facets", edge_middle(edit, is.non_manifold_at));
+  if (is.misoriented > was.misoriented)
+    refuse("new facets facing the other way from their neighbours", edge_middle(edit, is.misoriented_at));
+
+  // Where the rounding may place points: within the box of the facets it replaced, and within the reach.
+  Vec3 lo = Vec3::Constant(INFINITY), hi = Vec3::Constant(-INFINITY);
+  for (int f : edit.removed)
+    for (int k = 0; k < 3; ++k) lo = lo.cwiseMin(in.corner(f, k)), hi = hi.cwiseMax(in.corner(f, k));
+  const double span = edit.removed.empty() ? 0.0 : (hi - lo).norm();
+  const double magnitude = edit.removed.empty() ? 0.0 : std::max(lo.cwiseAbs().maxCoeff(), hi.cwiseAbs().maxCoeff());
+  const double slack = on_plane_slack(span, magnitude);
+  auto placed_within = [&](const Vec3& p) {
+    if ((p.array() < lo.array() - 1e-6 * span - slack).any() || (p.array() > hi.array() + 1e-6 * span + slack).any())
+      return false;
+    double d;
+    chain.project(p, &d);
+    return d <= reach * (1 + 1e-6) + slack;
+  };
+  for (size_t i = 0; i < edit.new_points.size(); ++i)
+    if (!placed_within(edit.new_points[i])) refuse("a new vertex beyond the faces it rounds", edit.new_points[i]);
+  for (const auto& moved : edit.moved)
+    if (!placed_within(moved.second)) refuse("a moved vertex beyond the faces it rounds", moved.second);
+
+  auto check_shape = [&](const Facet& f) {
+    const Vec3 a = edit.point(f[0]), b = edit.point(f[1]), c = edit.point(f[2]);
+    if (f[0] == f[1] || f[1] == f[2] || f[2] == f[0] || smallest_angle(a, b, c) * 180 / M_PI < kDegenerateDeg)
+      refuse("a degenerate facet (no area)", (a + b + c) / 3);
+  };
+  for (const Facet& f : edit.added) check_shape(f);
+  for (const Facet& f : kept)
+    if (edit.moved.count(f[0]) || edit.moved.count(f[1]) || edit.moved.count(f[2])) check_shape(f);
+
+  Vec3 where;
+  if (find_crossing(edit, kept, slack, &where)) refuse("facets that cross each other", where);
+}
+
+}  // namespace meshround

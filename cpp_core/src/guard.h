@@ -1,0 +1,24 @@
+// The output check (private to cpp_core): a rounding is returned only when its result is no worse than
+// its input. It looks at the band alone -- the facets made, the facets removed and the facets around
+// them -- so it costs what the band costs, and it is always on.
+//
+// Checks, each against the input's own state there (a flaw the input already had is not the result's):
+// - edges: no new boundary edge, no new non-manifold edge, no new edge whose two facets disagree in
+//   orientation (counted over every edge with an end on a changed facet: all other edges are untouched);
+// - facets: no degenerate made facet (a repeated vertex or an angle under kDegenerateDeg);
+// - placement: every new or moved vertex within the input's bounding box and within `reach` of the chain
+//   (a round never leaves the faces it rounds);
+// - self-intersection: no made facet crosses another made facet or a kept facet near it.
+// A failure throws RoundingError(result_invalid) naming the check and the place.
+#pragma once
+#include "meshround/chain.h"
+#include "meshround/mesh_edit.h"
+
+namespace meshround {
+
+constexpr double kDegenerateDeg = 0.01;  // smallest angle of a sound facet (the yardstick's own)
+
+// `reach`: the largest distance from the chain at which the rounding may place a point.
+void check_result(const MeshEdit& edit, const SharpChain& chain, double reach);
+
+}  // namespace meshround

@@ -1,0 +1,84 @@
+// The output check: a clean edit passes; a hole, a non-manifold edge, a flipped facet, a degenerate facet
+// and a vertex beyond the faces it rounds are each refused with result_invalid.
+#include <gtest/gtest.h>
+
+#include <BRepPrimAPI_MakeBox.hxx>
+
+#include "../../cpp_core/src/guard.h"
+#include "support.h"
+
+using namespace meshround;
+using namespace meshround::test;
+
+namespace {
+
+struct Scene {
+  TriMesh m = mesh_shape(BRepPrimAPI_MakeBox(100, 60, 40).Shape(), 4.0);
+  MeshTopology mesh{m.V, m.F};
+  SharpChain chain = trace_chain(mesh, Vec3(37, 60, 40), 30, 15);
+  MeshEdit edit{mesh};
+  int facet = -1;  // a facet of the top face beside the chain
+  Scene() {
+    for (int f = 0; f < mesh.num_facets() && facet < 0; ++f) {
+      const Vec3 c = (mesh.corner(f, 0) + mesh.corner(f, 1) + mesh.corner(f, 2)) / 3;
+      if (std::abs(c.z() - 40) < 1e-9 && c.y() > 56 && std::abs(c.x() - 50) < 4) facet = f;
+    }
+  }
+  int corner(int k) const { return mesh.F(facet, k); }
+  // The facet replaced by a fan around a new point at p.
+  void fan_around(const Vec3& p) {
+    edit.removed.insert(facet);
+    const int c = edit.add_point(p);
+    for (int k = 0; k < 3; ++k) edit.added.push_back({corner(k), corner((k + 1) % 3), c});
+  }
+  Vec3 centroid() const { return (mesh.corner(facet, 0) + mesh.corner(facet, 1) + mesh.corner(facet, 2)) / 3; }
+  std::string refusal() {
+    try {
+      check_result(edit, chain, 15);
+    } catch (const RoundingError& e) {
+      EXPECT_EQ(e.code, ErrorCode::ResultInvalid);
+      return e.what();
+    }
+    return "";
+  }
+};
+
+TEST(OutputCheck, PassesAFacetSplitInItsPlane) {
+  Scene s;
+  ASSERT_GE(s.facet, 0);
+  s.fan_around(s.centroid());
+  EXPECT_EQ(s.refusal(), "");
+}
+
+TEST(OutputCheck, RefusesAHole) {
+  Scene s;
+  s.edit.removed.insert(s.facet);
+  EXPECT_NE(s.refusal().find("new boundary edge"), std::string::npos);
+}
+
+TEST(OutputCheck, RefusesANonManifoldEdge) {
+  Scene s;
+  s.edit.added.push_back({s.corner(0), s.corner(1), s.corner(2)});  // the facet twice: three on each edge
+  EXPECT_NE(s.refusal().find("non-manifold"), std::string::npos);
+}
+
+TEST(OutputCheck, RefusesAFlippedFacet) {
+  Scene s;
+  s.edit.removed.insert(s.facet);
+  s.edit.added.push_back({s.corner(0), s.corner(2), s.corner(1)});
+  EXPECT_NE(s.refusal().find("facing the other way"), std::string::npos);
+}
+
+TEST(OutputCheck, RefusesADegenerateFacet) {
+  Scene s;
+  s.fan_around(s.mesh.corner(s.facet, 0) + 1e-9 * (s.mesh.corner(s.facet, 1) - s.mesh.corner(s.facet, 0)));
+  EXPECT_NE(s.refusal().find("degenerate"), std::string::npos);
+}
+
+TEST(OutputCheck, RefusesAVertexBeyondTheFacesItRounds) {
+  Scene s;
+  s.fan_around(s.centroid() + Vec3(0, 0, 0.5));
+  EXPECT_NE(s.refusal().find("beyond the faces it rounds"), std::string::npos);
+}
+
+}  // namespace
