@@ -181,7 +181,7 @@ bool find_crossing(const MeshEdit& edit, const std::vector<Facet>& kept, double 
 
 }  // namespace
 
-void check_result(const MeshEdit& edit, const SharpChain& chain, double reach) {
+void check_result(const MeshEdit& edit, const SharpChain& chain, double reach, double tolerance) {
   const MeshTopology& in = edit.input;
   const int n_in = in.num_vertices();
   // The changed vertices: those of removed, made and moved facets. Every edge with an end among them
@@ -212,23 +212,30 @@ void check_result(const MeshEdit& edit, const SharpChain& chain, double reach) {
     refuse("new facets facing the other way from their neighbours", edge_middle(edit, is.misoriented_at));
 
   // Where the rounding may place points: within the box of the facets it replaced, and within the reach.
+  // (A variable round's end profile is tilted off its end face by up to the tolerance.)
   Vec3 lo = Vec3::Constant(INFINITY), hi = Vec3::Constant(-INFINITY);
-  for (int f : edit.removed)
-    for (int k = 0; k < 3; ++k) lo = lo.cwiseMin(in.corner(f, k)), hi = hi.cwiseMax(in.corner(f, k));
-  const double span = edit.removed.empty() ? 0.0 : (hi - lo).norm();
-  const double magnitude = edit.removed.empty() ? 0.0 : std::max(lo.cwiseAbs().maxCoeff(), hi.cwiseAbs().maxCoeff());
+  for (const Facet& f : before)
+    for (int v : f) lo = lo.cwiseMin(in.point(v)), hi = hi.cwiseMax(in.point(v));
+  const double span = before.empty() ? 0.0 : (hi - lo).norm();
+  const double magnitude = before.empty() ? 0.0 : std::max(lo.cwiseAbs().maxCoeff(), hi.cwiseAbs().maxCoeff());
   const double slack = on_plane_slack(span, magnitude);
-  auto placed_within = [&](const Vec3& p) {
-    if ((p.array() < lo.array() - 1e-6 * span - slack).any() || (p.array() > hi.array() + 1e-6 * span + slack).any())
-      return false;
-    double d;
-    chain.project(p, &d);
-    return d <= reach * (1 + 1e-6) + slack;
+  const double margin = tolerance + 1e-6 * span + slack;
+  auto in_box = [&](const Vec3& p) {
+    return !(p.array() < lo.array() - margin).any() && !(p.array() > hi.array() + margin).any();
   };
-  for (size_t i = 0; i < edit.new_points.size(); ++i)
-    if (!placed_within(edit.new_points[i])) refuse("a new vertex beyond the faces it rounds", edit.new_points[i]);
+  for (const Vec3& p : edit.new_points)
+    if (!in_box(p)) refuse("a new vertex beyond the faces it rounds", p);
   for (const auto& moved : edit.moved)
-    if (!placed_within(moved.second)) refuse("a moved vertex beyond the faces it rounds", moved.second);
+    if (!in_box(moved.second)) refuse("a moved vertex beyond the faces it rounds", moved.second);
+  // Every made facet reaches back into the band (as the trim's points are admitted).
+  auto within_reach = [&](int v) {
+    double d;
+    chain.project(edit.point(v), &d);
+    return d <= reach + margin;
+  };
+  for (const Facet& f : edit.added)
+    if (!within_reach(f[0]) && !within_reach(f[1]) && !within_reach(f[2]))
+      refuse("a new facet wholly beyond the reach", (edit.point(f[0]) + edit.point(f[1]) + edit.point(f[2])) / 3);
 
   auto check_shape = [&](const Facet& f) {
     const Vec3 a = edit.point(f[0]), b = edit.point(f[1]), c = edit.point(f[2]);

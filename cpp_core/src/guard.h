@@ -6,8 +6,8 @@
 // - edges: no new boundary edge, no new non-manifold edge, no new edge whose two facets disagree in
 //   orientation (counted over every edge with an end on a changed facet: all other edges are untouched);
 // - facets: no degenerate made facet (a repeated vertex or an angle under kDegenerateDeg);
-// - placement: every new or moved vertex within the input's bounding box and within `reach` of the chain
-//   (a round never leaves the faces it rounds);
+// - placement: every new or moved vertex within the box of the input facets around the band (a round
+//   never leaves the faces it rounds), and every made facet with a corner within `reach` of the chain;
 // - self-intersection: no made facet crosses another made facet or a kept facet near it.
 // A failure throws RoundingError(result_invalid) naming the check and the place.
 #pragma once
@@ -18,7 +18,8 @@ namespace meshround {
 
 constexpr double kDegenerateDeg = 0.01;  // smallest angle of a sound facet (the yardstick's own)
 
-// `reach`: the largest distance from the chain at which the rounding may place a point.
-void check_result(const MeshEdit& edit, const SharpChain& chain, double reach);
+// `reach`: the largest distance from the chain at which the rounding may place a point; `tolerance`: the
+// chordal tolerance (how far the round's end profile may stand off an end face).
+void check_result(const MeshEdit& edit, const SharpChain& chain, double reach, double tolerance);
 
 }  // namespace meshround

@@ -151,7 +151,7 @@ RoundedChain round_one_chain(const MeshTopology& mesh, const Vec3& seed, const R
     round_vertices.insert(edit.added[f].begin(), edit.added[f].end());
   const ImproveStats improved = improve_new_facets(edit, round_vertices, within_reach);
   timer.done("improve");
-  check_result(edit, chain, reach);  // refuses a result worse than its input (guard.h)
+  check_result(edit, chain, reach, tol);  // refuses a result worse than its input (guard.h)
   timer.done("check");
   if (!is_probe) write_mesh(edit, V_out, F_out);  // a probe only counts thin facets (below)
   timer.done("write");

@@ -34,7 +34,7 @@ struct Scene {
   Vec3 centroid() const { return (mesh.corner(facet, 0) + mesh.corner(facet, 1) + mesh.corner(facet, 2)) / 3; }
   std::string refusal() {
     try {
-      check_result(edit, chain, 15);
+      check_result(edit, chain, 15, 0.05);
     } catch (const RoundingError& e) {
       EXPECT_EQ(e.code, ErrorCode::ResultInvalid);
       return e.what();
