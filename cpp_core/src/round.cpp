@@ -122,7 +122,7 @@ RoundedChain round_one_chain(const MeshTopology& mesh, const Vec3& seed, const R
   PassTimer timer(report);
   const double r_max = opt.max_radius();
   SharpChain chain = trace_chain(mesh, seed, opt.feature_angle_deg, opt.reach * r_max);
-  chain.index_segments(r_max);
+  chain.index_segments();
   const RadiusLaw law(opt, chain, opt.reach * r_max);
   const double reach = opt.reach * law.max_radius();
   const BaseMeshes base = collect_base_meshes(mesh, chain, reach, opt.feature_angle_deg);
@@ -130,7 +130,7 @@ RoundedChain round_one_chain(const MeshTopology& mesh, const Vec3& seed, const R
   timer.done("chain");
 
   const double tol = opt.tolerance > 0 ? opt.tolerance : law.max_radius() / 100.0;
-  const BaseDistance dist_a(mesh, base.facets[0], law.max_radius()), dist_b(mesh, base.facets[1], law.max_radius());
+  const BaseDistance dist_a(mesh, base.facets[0]), dist_b(mesh, base.facets[1]);
   const SpineContext ctx{mesh, chain, base, {&dist_a, &dist_b}};
   RoundingSurface surface;
   RoundedChain out;
