@@ -61,7 +61,7 @@ auto guarded(F&& f) {
 }
 
 py::dict round_edges_py(const py::array& vertices, const py::array& triangles, const py::array& seeds, double radius,
-                        double tolerance, double feature_angle, double reach, const py::object& radius_law) {
+                        double tolerance, double feature_angle, double reach, const py::object& radius_law, long max_new_facets) {
   const Points V = to_points(vertices, "vertices");
   const Triangles F = to_triangles(triangles);
   const Points S = to_points(seeds, "seeds");
@@ -70,6 +70,7 @@ py::dict round_edges_py(const py::array& vertices, const py::array& triangles, c
   opt.tolerance = tolerance;
   opt.feature_angle_deg = feature_angle;
   opt.reach = reach;
+  if (max_new_facets > 0) opt.max_new_facets = max_new_facets;  // 0: the default budget
   if (!radius_law.is_none()) {
     auto law = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(radius_law);
     if (!law || law.ndim() != 2 || law.shape(1) != 4) throw RoundingError(ErrorCode::InvalidInput, "radius_law must be a (p, 4) array of [x, y, z, r]");
@@ -177,7 +178,7 @@ PYBIND11_MODULE(_meshround_core, m) {
   });
   m.def("round_edges", &round_edges_py, py::arg("vertices"), py::arg("triangles"), py::arg("seeds"), py::arg("radius"),
         py::arg("tolerance") = 0.0, py::arg("feature_angle") = 30.0, py::arg("reach") = 3.0,
-        py::arg("radius_law") = py::none(),
+        py::arg("radius_law") = py::none(), py::arg("max_new_facets") = 0,
         "Round the chains of sharp edges the seeds select. See CONTRACT.md for the arrays and the report.");
   m.def("trace_chains", &trace_chains_py, py::arg("vertices"), py::arg("triangles"), py::arg("seeds"),
         py::arg("feature_angle") = 30.0, py::arg("search_radius") = 0.0, "The sharp-edge chains the seeds select: [{'points': (c, 3), 'closed': bool}].");

@@ -29,10 +29,35 @@ class PassTimer {
   Clock::time_point t_;
 };
 
-void validate(const RoundOptions& o) {
+// What the mesh's coordinates can carry. Meshes come as float32 (STL, Mesh.Mesh): a coordinate of
+// magnitude m holds ~7 digits, and the engine counts a point within 1e-6 m of a plane as on it
+// (on_plane_slack). A chordal tolerance finer than that precision is not there to be met, and a radius
+// below kMinRadiusPerPrecision times it cannot be made to its own default tolerance (r / 100): both
+// are refused with radius_too_small, naming the smallest value that works.
+constexpr double kCoordinatePrecision = 1e-6;     // relative to the mesh's largest |coordinate|, as on_plane_slack
+constexpr double kMinTolerancePerPrecision = 1;   // tolerance >= the precision
+constexpr double kMinRadiusPerPrecision = 100;    // radius >= 100 x the precision (its r / 100 >= the precision)
+
+// Largest |coordinate| of the finite coordinates (the mesh's own check refuses the others).
+double coordinate_magnitude(const Points& V) {
+  double m = 0;
+  for (Eigen::Index i = 0; i < V.size(); ++i)
+    if (std::isfinite(V.data()[i])) m = std::max(m, std::abs(V.data()[i]));
+  return m;
+}
+
+// Every option is checked here, before any work; `magnitude` is the mesh's largest |coordinate|.
+void validate(const RoundOptions& o, double magnitude) {
+  double smallest_radius = o.radius;
   if (!o.radius_law.empty()) {
-    for (const RadiusControl& c : o.radius_law)
+    smallest_radius = INFINITY;
+    for (const RadiusControl& c : o.radius_law) {
       if (!c.point.allFinite()) throw RoundingError(ErrorCode::InvalidInput, "a radius control point has a NaN or infinite coordinate");
+      if (!(c.radius > 0) || !std::isfinite(c.radius))
+        throw RoundingError(ErrorCode::InvalidInput, "the radius control point at " + format_point(c.point) + " has radius " +
+                            format_number(c.radius) + "; radii must be positive");
+      smallest_radius = std::min(smallest_radius, c.radius);
+    }
   } else if (!(o.radius > 0) || !std::isfinite(o.radius)) {
     throw RoundingError(ErrorCode::InvalidInput, "the radius must be a positive number (got " + format_number(o.radius) + ")");
   }
@@ -40,6 +65,18 @@ void validate(const RoundOptions& o) {
   if (!(o.feature_angle_deg > 0 && o.feature_angle_deg < 180))
     throw RoundingError(ErrorCode::InvalidInput, "the feature angle must lie between 0 and 180 degrees");
   if (!(o.reach >= 1) || !std::isfinite(o.reach)) throw RoundingError(ErrorCode::InvalidInput, "the reach factor must be at least 1");
+  if (!(o.max_new_facets > 0)) throw RoundingError(ErrorCode::InvalidInput, "the work budget (max_new_facets) must be positive");
+  const double precision = kCoordinatePrecision * magnitude;
+  const std::string why = " mm is below what this mesh's coordinates can carry (float32-level precision " + format_number(precision) +
+                          " mm at coordinates up to " + format_number(magnitude) + " mm)";
+  const double min_radius = kMinRadiusPerPrecision * precision;
+  if (smallest_radius < min_radius * (1 - 1e-6))  // a hair: the value the message names passes
+    throw RoundingError(ErrorCode::RadiusTooSmall, "the radius " + format_number(smallest_radius) + why + "; the smallest radius that works is " +
+                        format_number(min_radius) + " mm");
+  const double min_tolerance = kMinTolerancePerPrecision * precision;
+  if (o.effective_tolerance() < min_tolerance * (1 - 1e-6))
+    throw RoundingError(ErrorCode::RadiusTooSmall, "the tolerance " + format_number(o.effective_tolerance()) + why +
+                        "; the smallest tolerance that works is " + format_number(min_tolerance) + " mm");
 }
 
 // Largest distance between the lofted surface and the exact ball at arc length s (its profile circle).
@@ -64,11 +101,15 @@ ProfileStation station(const SpineContext& ctx, const RadiusLaw& law, double s) 
 }
 
 // Profiles along the chain: uniform to start with, then wherever the loft strays from the exact ball.
-std::vector<ProfileStation> sample_profiles(const SpineContext& ctx, const RadiusLaw& law, double tolerance,
+// Each station is at least two facets of the round (a quad between it and the next): stations count
+// against the work budget as two facets, checked before they are solved.
+std::vector<ProfileStation> sample_profiles(const SpineContext& ctx, const RadiusLaw& law, double tolerance, long max_new_facets,
                                             RoundingSurface& surface, double* loft_deviation) {
   const SharpChain& chain = ctx.chain;
   const double L = chain.length;
-  const int n0 = std::max(chain.closed ? 6 : 4, int(std::ceil(L / (0.5 * law.min_radius()))) + 1);
+  const double planned = std::ceil(L / (0.5 * law.min_radius())) + 1;
+  check_work_budget(2 * planned, max_new_facets, "profile stations");
+  const int n0 = std::max(chain.closed ? 6 : 4, int(planned));
   std::vector<ProfileStation> st;
   for (int i = 0; i < n0; ++i) {
     const double s = chain.closed ? L * i / n0 : L * i / (n0 - 1);
@@ -92,6 +133,7 @@ std::vector<ProfileStation> sample_profiles(const SpineContext& ctx, const Radiu
       if (e > 0.1 * tolerance) extra.push_back(mid);
     }
     if (extra.empty()) break;
+    check_work_budget(2.0 * double(st.size() + extra.size()), max_new_facets, "profile stations");
     st.insert(st.end(), extra.begin(), extra.end());
     std::sort(st.begin(), st.end(), [](const ProfileStation& x, const ProfileStation& y) { return x.s < y.s; });
   }
@@ -134,10 +176,11 @@ RoundedChain round_one_chain(const MeshTopology& mesh, const Vec3& seed, const R
   const SpineContext ctx{mesh, chain, base, {&dist_a, &dist_b}};
   RoundingSurface surface;
   RoundedChain out;
-  const std::vector<ProfileStation> stations = sample_profiles(ctx, law, tol, surface, &out.report.surface_deviation);
+  const std::vector<ProfileStation> stations = sample_profiles(ctx, law, tol, opt.max_new_facets, surface, &out.report.surface_deviation);
   timer.done("surface");
 
   MeshEdit edit(mesh);
+  edit.max_new_facets = opt.max_new_facets;
   const int segments = profile_segments(stations, tol);
   auto spacing = [&](double u) { return std::max(kMaxStepRatio * profile_step(surface, stations, segments, u), 1e-6); };
   // Cut facets and end caps get inner points for shape, but only within the reach: beyond it every
@@ -284,7 +327,7 @@ std::vector<SharpChain> find_chains(const Points& V, const Triangles& F, const s
 
 RoundResult round_edges(const Points& V, const Triangles& F, const std::vector<Vec3>& seeds, const RoundOptions& opt) {
   const auto start = Clock::now();
-  validate(opt);
+  validate(opt, coordinate_magnitude(V));
   if (seeds.empty()) throw RoundingError(ErrorCode::InvalidInput, "no seed given: pick a point on a sharp edge");
   RoundResult result;
   // One seed per distinct chain, found on the input; each chain is then rounded on the latest mesh.
