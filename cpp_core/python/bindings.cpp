@@ -76,11 +76,12 @@ RoundOptions to_options(double radius, double tolerance, double feature_angle, d
 }
 
 py::dict round_edges_py(const py::array& vertices, const py::array& triangles, const py::array& seeds, double radius,
-                        double tolerance, double feature_angle, double reach, const py::object& radius_law) {
+                        double tolerance, double feature_angle, double reach, const py::object& radius_law, long max_new_facets) {
   const Points V = to_points(vertices, "vertices");
   const Triangles F = to_triangles(triangles);
   const Points S = to_points(seeds, "seeds");
-  const RoundOptions opt = to_options(radius, tolerance, feature_angle, reach, radius_law);
+  RoundOptions opt = to_options(radius, tolerance, feature_angle, reach, radius_law);
+  if (max_new_facets > 0) opt.max_new_facets = max_new_facets;  // 0: the default budget
   RoundResult res;
   {
     py::gil_scoped_release release;
@@ -182,7 +183,7 @@ PYBIND11_MODULE(_meshround_core, m) {
   });
   m.def("round_edges", &round_edges_py, py::arg("vertices"), py::arg("triangles"), py::arg("seeds"), py::arg("radius"),
         py::arg("tolerance") = 0.0, py::arg("feature_angle") = 30.0, py::arg("reach") = 3.0,
-        py::arg("radius_law") = py::none(),
+        py::arg("radius_law") = py::none(), py::arg("max_new_facets") = 0,
         "Round the chains of sharp edges the seeds select. See CONTRACT.md for the arrays and the report.");
   m.attr("MIN_REACH") = kMinReach;
   m.def("validate_options", [](double radius, double tolerance, double feature_angle, double reach,

@@ -1,5 +1,7 @@
 #include "meshround/chain.h"
 
+#include "box_tree.h"
+
 #include <algorithm>
 #include <cmath>
 #include <queue>
@@ -225,36 +227,36 @@ Vec3 SharpChain::tangent_at(double s) const {
   return ((1 - t) * vertex_tangents_[i] + t * vertex_tangents_[(i + 1) % points.size()]).normalized();
 }
 
-void SharpChain::index_segments(double cell) {
+void SharpChain::index_segments() {
   const int n = int(points.size());
-  cell_ = cell;
-  segments_ = std::make_shared<BoxGrid>(cell);
+  std::vector<Vec3> boxes;
+  boxes.reserve(2 * num_edges());
   for (int i = 0; i < num_edges(); ++i)
-    segments_->insert(i, points[i].cwiseMin(points[(i + 1) % n]), points[i].cwiseMax(points[(i + 1) % n]));
+    boxes.push_back(points[i].cwiseMin(points[(i + 1) % n])), boxes.push_back(points[i].cwiseMax(points[(i + 1) % n]));
+  segments_ = std::make_shared<const BoxTree>(boxes);
 }
 
 double SharpChain::project(const Vec3& p, double* distance) const {
   const int n = int(points.size()), segs = closed ? n : n - 1;
-  double best = INFINITY, s_best = 0;
-  auto consider = [&](int i) {
+  auto d2 = [&](int i) {
     double t;
-    const Vec3 q = closest_point_on_segment(p, points[i], points[(i + 1) % n], &t);
-    const double d = (q - p).squaredNorm();
-    if (d < best) best = d, s_best = arc_length[i] + t * (points[(i + 1) % n] - points[i]).norm();
+    return (closest_point_on_segment(p, points[i], points[(i + 1) % n], &t) - p).squaredNorm();
   };
+  double best = INFINITY;
+  int i_best = -1;
   if (segments_) {
-    std::vector<int> cand;
-    for (double h = 0.5 * cell_; h < 1e3 * cell_ && best == INFINITY; h *= 4) {
-      cand.clear();
-      segments_->query(p - Vec3::Constant(h), p + Vec3::Constant(h), cand);
-      for (int i : cand) consider(i);
-      if (std::sqrt(best) > h) best = INFINITY;  // something outside the box may be nearer: look wider
+    i_best = segments_->nearest(p, d2, &best);
+  } else {
+    for (int i = 0; i < segs; ++i) {
+      const double d = d2(i);
+      if (d < best) best = d, i_best = i;
     }
   }
-  if (best == INFINITY)
-    for (int i = 0; i < segs; ++i) consider(i);
+  double t = 0;
+  if (i_best >= 0) closest_point_on_segment(p, points[i_best], points[(i_best + 1) % n], &t);
+  else i_best = 0;
   if (distance) *distance = std::sqrt(best);
-  return s_best;
+  return arc_length[i_best] + t * (points[(i_best + 1) % n] - points[i_best]).norm();
 }
 
 double SharpChain::project_from(const Vec3& p, double s_hint, double* distance) const {

@@ -220,35 +220,4 @@ Vec3 closest_point_on_triangle(const Vec3& p, const Vec3& a, const Vec3& b, cons
   return a + ab * (vb / denom) + ac * (vc / denom);
 }
 
-std::array<long, 3> BoxGrid::cell_of(const Vec3& p) const {
-  return {long(std::floor(p.x() / cell_)), long(std::floor(p.y() / cell_)), long(std::floor(p.z() / cell_))};
-}
-
-std::uint64_t BoxGrid::key(long i, long j, long k) {
-  return (std::uint64_t(i & 0x1FFFFF) << 42) | (std::uint64_t(j & 0x1FFFFF) << 21) | std::uint64_t(k & 0x1FFFFF);
-}
-
-void BoxGrid::insert(int id, const Vec3& lo, const Vec3& hi) {
-  const auto a = cell_of(lo), b = cell_of(hi);
-  const double span = double(b[0] - a[0] + 1) * double(b[1] - a[1] + 1) * double(b[2] - a[2] + 1);
-  if (span > 4096) {  // a long CAD sliver across a fine grid
-    oversized_.push_back(id);
-    return;
-  }
-  for (long i = a[0]; i <= b[0]; ++i)
-    for (long j = a[1]; j <= b[1]; ++j)
-      for (long k = a[2]; k <= b[2]; ++k) cells_[key(i, j, k)].push_back(id);
-}
-
-void BoxGrid::query(const Vec3& lo, const Vec3& hi, std::vector<int>& out) const {
-  const auto a = cell_of(lo), b = cell_of(hi);
-  out.insert(out.end(), oversized_.begin(), oversized_.end());
-  for (long i = a[0]; i <= b[0]; ++i)
-    for (long j = a[1]; j <= b[1]; ++j)
-      for (long k = a[2]; k <= b[2]; ++k) {
-        auto it = cells_.find(key(i, j, k));
-        if (it != cells_.end()) out.insert(out.end(), it->second.begin(), it->second.end());
-      }
-}
-
 }  // namespace meshround

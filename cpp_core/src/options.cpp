@@ -29,6 +29,7 @@ void validate_options(const RoundOptions& o) {
     invalid("the feature angle must lie between 0 and 180 degrees (got " + format_number(o.feature_angle_deg) + ")");
   if (!(o.reach >= kMinReach) || !std::isfinite(o.reach))
     invalid("the reach factor must be at least " + format_number(kMinReach) + " (got " + format_number(o.reach) + ")");
+  if (!(o.max_new_facets > 0)) invalid("the work budget (max_new_facets) must be positive");
 }
 
 }  // namespace meshround

@@ -30,6 +30,44 @@ class PassTimer {
   Clock::time_point t_;
 };
 
+// What the mesh's coordinates can carry. Meshes come as float32 (STL, Mesh.Mesh): a coordinate of
+// magnitude m holds ~7 digits, and the engine counts a point within 1e-6 m of a plane as on it
+// (on_plane_slack). A chordal tolerance finer than that precision is not there to be met, and a radius
+// below kMinRadiusPerPrecision times it cannot be made to its own default tolerance (r / 100): both
+// are refused with radius_too_small, naming the smallest value that works.
+constexpr double kCoordinatePrecision = 1e-6;     // relative to the mesh's largest |coordinate|, as on_plane_slack
+constexpr double kMinTolerancePerPrecision = 1;   // tolerance >= the precision
+constexpr double kMinRadiusPerPrecision = 100;    // radius >= 100 x the precision (its r / 100 >= the precision)
+
+// Largest |coordinate| of the finite coordinates (the mesh's own check refuses the others).
+double coordinate_magnitude(const Points& V) {
+  double m = 0;
+  for (Eigen::Index i = 0; i < V.size(); ++i)
+    if (std::isfinite(V.data()[i])) m = std::max(m, std::abs(V.data()[i]));
+  return m;
+}
+
+// The limits the mesh's precision sets (the options' own ranges are validate_options'); `magnitude` is
+// the mesh's largest |coordinate|.
+void check_precision(const RoundOptions& o, double magnitude) {
+  double smallest_radius = o.radius;
+  if (!o.radius_law.empty()) {
+    smallest_radius = INFINITY;
+    for (const RadiusControl& c : o.radius_law) smallest_radius = std::min(smallest_radius, c.radius);
+  }
+  const double precision = kCoordinatePrecision * magnitude;
+  const std::string why = " mm is below what this mesh's coordinates can carry (float32-level precision " + format_number(precision) +
+                          " mm at coordinates up to " + format_number(magnitude) + " mm)";
+  const double min_radius = kMinRadiusPerPrecision * precision;
+  if (smallest_radius < min_radius * (1 - 1e-6))  // a hair: the value the message names passes
+    throw RoundingError(ErrorCode::RadiusTooSmall, "the radius " + format_number(smallest_radius) + why + "; the smallest radius that works is " +
+                        format_number(min_radius) + " mm");
+  const double min_tolerance = kMinTolerancePerPrecision * precision;
+  if (o.effective_tolerance() < min_tolerance * (1 - 1e-6))
+    throw RoundingError(ErrorCode::RadiusTooSmall, "the tolerance " + format_number(o.effective_tolerance()) + why +
+                        "; the smallest tolerance that works is " + format_number(min_tolerance) + " mm");
+}
+
 // Largest distance between the lofted surface and the exact ball at arc length s (its profile circle).
 double loft_error(const RoundingSurface& surface, const ProfileStation& exact) {
   double worst = 0;
@@ -52,11 +90,15 @@ ProfileStation station(const SpineContext& ctx, const RadiusLaw& law, double s) 
 }
 
 // Profiles along the chain: uniform to start with, then wherever the loft strays from the exact ball.
-std::vector<ProfileStation> sample_profiles(const SpineContext& ctx, const RadiusLaw& law, double tolerance,
+// Each station is at least two facets of the round (a quad between it and the next): stations count
+// against the work budget as two facets, checked before they are solved.
+std::vector<ProfileStation> sample_profiles(const SpineContext& ctx, const RadiusLaw& law, double tolerance, long max_new_facets,
                                             RoundingSurface& surface, double* loft_deviation) {
   const SharpChain& chain = ctx.chain;
   const double L = chain.length;
-  const int n0 = std::max(chain.closed ? 6 : 4, int(std::ceil(L / (0.5 * law.min_radius()))) + 1);
+  const double planned = std::ceil(L / (0.5 * law.min_radius())) + 1;
+  check_work_budget(2 * planned, max_new_facets, "profile stations");
+  const int n0 = std::max(chain.closed ? 6 : 4, int(planned));
   std::vector<ProfileStation> st;
   for (int i = 0; i < n0; ++i) {
     const double s = chain.closed ? L * i / n0 : L * i / (n0 - 1);
@@ -80,6 +122,7 @@ std::vector<ProfileStation> sample_profiles(const SpineContext& ctx, const Radiu
       if (e > 0.1 * tolerance) extra.push_back(mid);
     }
     if (extra.empty()) break;
+    check_work_budget(2.0 * double(st.size() + extra.size()), max_new_facets, "profile stations");
     st.insert(st.end(), extra.begin(), extra.end());
     std::sort(st.begin(), st.end(), [](const ProfileStation& x, const ProfileStation& y) { return x.s < y.s; });
   }
@@ -110,7 +153,7 @@ RoundedChain round_one_chain(const MeshTopology& mesh, const Vec3& seed, const R
   PassTimer timer(report);
   const double r_max = opt.max_radius();
   SharpChain chain = trace_chain(mesh, seed, opt.feature_angle_deg, opt.reach * r_max);
-  chain.index_segments(r_max);
+  chain.index_segments();
   const RadiusLaw law(opt, chain, opt.reach * r_max);
   const double reach = opt.reach * law.max_radius();
   const BaseMeshes base = collect_base_meshes(mesh, chain, reach, opt.feature_angle_deg);
@@ -118,14 +161,15 @@ RoundedChain round_one_chain(const MeshTopology& mesh, const Vec3& seed, const R
   timer.done("chain");
 
   const double tol = opt.tolerance > 0 ? opt.tolerance : law.max_radius() / 100.0;
-  const BaseDistance dist_a(mesh, base.facets[0], law.max_radius()), dist_b(mesh, base.facets[1], law.max_radius());
+  const BaseDistance dist_a(mesh, base.facets[0]), dist_b(mesh, base.facets[1]);
   const SpineContext ctx{mesh, chain, base, {&dist_a, &dist_b}};
   RoundingSurface surface;
   RoundedChain out;
-  const std::vector<ProfileStation> stations = sample_profiles(ctx, law, tol, surface, &out.report.surface_deviation);
+  const std::vector<ProfileStation> stations = sample_profiles(ctx, law, tol, opt.max_new_facets, surface, &out.report.surface_deviation);
   timer.done("surface");
 
   MeshEdit edit(mesh);
+  edit.max_new_facets = opt.max_new_facets;
   const int segments = profile_segments(stations, tol);
   auto spacing = [&](double u) { return std::max(kMaxStepRatio * profile_step(surface, stations, segments, u), 1e-6); };
   // Cut facets and end caps get inner points for shape, but only within the reach: beyond it every
@@ -278,6 +322,7 @@ std::vector<SharpChain> find_chains(const Points& V, const Triangles& F, const s
 RoundResult round_edges(const Points& V, const Triangles& F, const std::vector<Vec3>& seeds, const RoundOptions& opt) {
   const auto start = Clock::now();
   validate_options(opt);
+  check_precision(opt, coordinate_magnitude(V));
   if (seeds.empty()) throw RoundingError(ErrorCode::InvalidInput, "no seed given: pick a point on a sharp edge");
   RoundResult result;
   // One seed per distinct chain, found on the input; each chain is then rounded on the latest mesh.

@@ -1,5 +1,7 @@
 #include "meshround/spine.h"
 
+#include "box_tree.h"
+
 #include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
@@ -11,37 +13,29 @@ double ProfileStation::angle() const {
   return std::acos(std::clamp(a.dot(b), -1.0, 1.0));
 }
 
-BaseDistance::BaseDistance(const MeshTopology& mesh, const std::vector<int>& facets, double cell)
-    : mesh_(mesh), facets_(facets), grid_(cell) {
-  for (int i = 0; i < int(facets.size()); ++i) {
-    const int f = facets[i];
+BaseDistance::BaseDistance(const MeshTopology& mesh, const std::vector<int>& facets) : mesh_(mesh), facets_(facets) {
+  std::vector<Vec3> boxes;
+  boxes.reserve(2 * facets.size());
+  for (const int f : facets) {
     const Vec3 a = mesh.corner(f, 0), b = mesh.corner(f, 1), c = mesh.corner(f, 2);
-    grid_.insert(i, a.cwiseMin(b).cwiseMin(c), a.cwiseMax(b).cwiseMax(c));
+    boxes.push_back(a.cwiseMin(b).cwiseMin(c)), boxes.push_back(a.cwiseMax(b).cwiseMax(c));
   }
+  tree_ = std::make_shared<const BoxTree>(boxes);
 }
 
-Vec3 BaseDistance::closest(const Vec3& p, double guess_radius, int* facet, int* region) const {
-  std::vector<int> cand;
-  double h = guess_radius;
-  for (int attempt = 0; attempt < 64; ++attempt, h *= 2) {
-    cand.clear();
-    grid_.query(p - Vec3::Constant(h), p + Vec3::Constant(h), cand);
-    double best = INFINITY;
-    Vec3 q_best = p;
-    for (int i : cand) {
-      const int f = facets_[i];
-      int reg;
-      const Vec3 q = closest_point_on_triangle(p, mesh_.corner(f, 0), mesh_.corner(f, 1), mesh_.corner(f, 2), &reg);
-      const double d = (q - p).squaredNorm();
-      if (d < best) {
-        best = d, q_best = q;
-        if (facet) *facet = f;
-        if (region) *region = reg;
-      }
-    }
-    if (std::sqrt(best) <= h) return q_best;  // nothing outside the searched box can be nearer
-  }
-  throw RoundingError(ErrorCode::NonManifoldInput, "a base mesh is empty near " + format_point(p));
+Vec3 BaseDistance::closest(const Vec3& p, int* facet, int* region) const {
+  auto d2 = [&](int i) {
+    const int f = facets_[i];
+    return (closest_point_on_triangle(p, mesh_.corner(f, 0), mesh_.corner(f, 1), mesh_.corner(f, 2), nullptr) - p).squaredNorm();
+  };
+  const int i = tree_->nearest(p, d2);
+  if (i < 0) throw RoundingError(ErrorCode::NonManifoldInput, "a base mesh is empty near " + format_point(p));
+  const int f = facets_[i];
+  int reg;
+  const Vec3 q = closest_point_on_triangle(p, mesh_.corner(f, 0), mesh_.corner(f, 1), mesh_.corner(f, 2), &reg);
+  if (facet) *facet = f;
+  if (region) *region = reg;
+  return q;
 }
 
 namespace {
@@ -104,7 +98,7 @@ ProfileStation solve_station(const SpineContext& ctx, double s, double r) {
     Vec3 g[2];
     double F[2];
     for (int k = 0; k < 2; ++k) {
-      st.contact[k] = ctx.distance[k]->closest(c, 1.5 * r, &facet[k], &code[k]);
+      st.contact[k] = ctx.distance[k]->closest(c, &facet[k], &code[k]);
       const double d = (c - st.contact[k]).norm();
       g[k] = (c - st.contact[k]) / std::max(d, 1e-300);
       F[k] = d - r;

@@ -205,6 +205,12 @@ RoundMeshStats mesh_rounding_surface(const RoundingSurface& surface, const std::
       }
       rows.push_back(row);
     };
+    // The work budget, before the rows are made: every inner row point costs about two facets.
+    double planned = 0;
+    for (int side = 0; side < 2; ++side)
+      for (const GradedRow& g : graded[side]) planned += double(g.U.size());
+    planned += double(nv - 1) * double(U.size());
+    edit.check_budget(2.0 * (planned + double(edit.new_points.size())), "the round's rows");
     for (const GradedRow& g : graded[0]) add_row(g.U, g.v);
     for (int j = 1; j < nv; ++j) add_row(U, levels[j]);
     for (const GradedRow& g : graded[1]) add_row(g.U, g.v);
@@ -257,13 +263,21 @@ RoundMeshStats mesh_rounding_surface(const RoundingSurface& surface, const std::
     }
     if (debug) fprintf(stderr, "refine round %d: %zu facets, %zu bad, U %zu, max dev %g\n", round, tris.size(), bad.size(), U.size(), stats.max_deviation);
     if (bad.empty()) break;
+    // Does a bad facet's u range overlap (a, b)? Bad ranges sorted by their start, with the running
+    // largest end: one binary search per interval instead of a scan of every bad facet.
+    std::sort(bad.begin(), bad.end());
+    std::vector<double> reach_end(bad.size());
+    for (size_t i = 0; i < bad.size(); ++i) reach_end[i] = std::max(bad[i].second, i ? reach_end[i - 1] : -INFINITY);
+    auto overlaps_bad = [&](double a, double b) {
+      const size_t n = size_t(std::lower_bound(bad.begin(), bad.end(), b, [](auto& r, double x) { return r.first < x; }) - bad.begin());
+      return n > 0 && reach_end[n - 1] > a;
+    };
     std::vector<double> refined{U.front()};
     for (size_t i = 1; i < U.size(); ++i) {
       const double a = U[i - 1], b = U[i];
       // Never finer than the least step (a facet that still strays then sits on a trim point that
       // lies off the surface: thinner facets would not bring it nearer).
-      const bool split = 0.5 * (b - a) >= h_min(a) &&
-                         std::any_of(bad.begin(), bad.end(), [&](auto& r) { return r.first < b && r.second > a; });
+      const bool split = 0.5 * (b - a) >= h_min(a) && overlaps_bad(a, b);
       if (split) refined.push_back(0.5 * (a + b));
       refined.push_back(b);
     }

@@ -4,6 +4,7 @@
 #include <cstdlib>
 #include <functional>
 #include <set>
+#include <string>
 #include <unordered_map>
 
 #include "meshround/mesh_edit.h"
@@ -416,6 +417,13 @@ void triangulate_polygon(MeshEdit& edit, const std::vector<int>& polygon, const 
     if (flipped) out.push_back({ring[t[2]], ring[t[1]], ring[t[0]]});
     else out.push_back({ring[t[0]], ring[t[1]], ring[t[2]]});
   }
+}
+
+void check_work_budget(double facets, long budget, const char* pass) {
+  if (facets > double(budget))
+    throw RoundingError(ErrorCode::WorkLimit, "the rounding would make more than " + std::to_string(budget) + " new facets (" + pass +
+                        ": about " + format_number(facets) + "), the work budget max_new_facets; "
+                        "use a larger radius or tolerance, or raise max_new_facets");
 }
 
 }  // namespace meshround

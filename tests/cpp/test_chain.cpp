@@ -51,7 +51,7 @@ TEST(Chain, BaseMeshReachesBehindTheFold) {
   const FoldedRidge r(true);
   const MeshTopology mesh(r.V, r.F);
   SharpChain chain = trace_chain(mesh, Vec3(5, 0, 0), 30, 6.0);
-  chain.index_segments(2.0);
+  chain.index_segments();
   const BaseMeshes base = collect_base_meshes(mesh, chain, 6.0, 30);
   // Facet 5 (R0, B0, X) touches the ridge only through the fold's sharp edges: on the wall's side.
   ASSERT_TRUE(base.side_of.count(5));

@@ -45,18 +45,20 @@ class RoundingResult:
                 f"{r.get('facets_out')} facets, {r.get('seconds', 0.0):.3f} s>")
 
 
-def round_edges(mesh, seeds, radius, tolerance=None, feature_angle=30.0, reach=3.0):
+def round_edges(mesh, seeds, radius, tolerance=None, feature_angle=30.0, reach=3.0, max_new_facets=None):
     """Round the sharp-edge chains of `mesh` that pass nearest to `seeds`.
 
     mesh: Mesh.Mesh (not modified).  seeds: a Vector, an (x, y, z) triple, or a list of them; each picks
     the sharp edge nearest to it and its whole chain.  radius: mm, or a list of (point, radius) control
     points for a variable radius.  tolerance: chordal tolerance, None or 0 means largest radius / 100.
     feature_angle: degrees between facets from which an edge is sharp.  reach: facets within reach * r
-    of a chain are re-meshed.  Returns a RoundingResult; raises RoundingError.
+    of a chain are re-meshed.  max_new_facets: the work budget (None: the engine's default, 2,000,000);
+    a rounding that would make more new facets is refused (code work_limit).  Returns a RoundingResult;
+    raises RoundingError.
     """
     started = time.perf_counter()
     inputs.check_mesh(mesh)
-    arguments = _engine_arguments(seeds, radius, tolerance, feature_angle, reach)
+    arguments = _engine_arguments(seeds, radius, tolerance, feature_angle, reach, max_new_facets)
     vertices, triangles = meshconv.mesh_to_arrays(mesh)
     result = _round(vertices, triangles, arguments)
     result.mesh  # noqa: B018  (build it now: part of this call's cost, and of report["seconds"])
@@ -64,12 +66,12 @@ def round_edges(mesh, seeds, radius, tolerance=None, feature_angle=30.0, reach=3
     return result
 
 
-def round_arrays(vertices, triangles, seeds, radius, tolerance=None, feature_angle=30.0, reach=3.0):
+def round_arrays(vertices, triangles, seeds, radius, tolerance=None, feature_angle=30.0, reach=3.0, max_new_facets=None):
     """round_edges for a mesh given as vertices (n, 3) and triangles (m, 3); result.mesh is built lazily."""
     started = time.perf_counter()
     if len(triangles) == 0:
         raise RoundingError("mesh is empty: it has no facets")
-    arguments = _engine_arguments(seeds, radius, tolerance, feature_angle, reach)
+    arguments = _engine_arguments(seeds, radius, tolerance, feature_angle, reach, max_new_facets)
     result = _round(vertices, triangles, arguments)
     result.report["seconds"] = time.perf_counter() - started
     return result
@@ -111,9 +113,12 @@ def trace_arrays(vertices, triangles, seeds, feature_angle=30.0):
     return shapes.polyline_wires([c["points"] for c in found], [c["closed"] for c in found])
 
 
-def _engine_arguments(seeds, radius, tolerance, feature_angle, reach):
+def _engine_arguments(seeds, radius, tolerance, feature_angle, reach, max_new_facets=None):
     """Keyword arguments for core.round_edges, every one checked."""
     largest_radius, law = inputs.radius_and_law(radius)
+    if max_new_facets is not None and (isinstance(max_new_facets, bool) or not isinstance(max_new_facets, int) or max_new_facets < 1):
+        raise RoundingError(f"max_new_facets must be a positive whole number (or None: the default), got {max_new_facets!r}",
+                            code="invalid_input")
     return dict(
         seeds=inputs.seed_array(seeds),
         radius=largest_radius,
@@ -121,6 +126,7 @@ def _engine_arguments(seeds, radius, tolerance, feature_angle, reach):
         feature_angle=inputs.feature_angle_value(feature_angle),
         reach=inputs.reach_value(reach),
         radius_law=law,
+        max_new_facets=int(max_new_facets or 0),  # 0: the engine's default
     )
 
 

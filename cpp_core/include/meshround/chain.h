@@ -33,11 +33,12 @@ struct SharpChain {
   // Point and smoothed unit tangent at arc length s (wrapped for a loop, clamped otherwise).
   Vec3 point_at(double s) const;
   Vec3 tangent_at(double s) const;
-  // Arc length of the chain point nearest to p, and the distance to it (a grid of the segments keeps
-  // this local; see index_segments).
+  // Arc length of the chain point nearest to p, and the distance to it (exact; a bounding volume
+  // hierarchy of the segments keeps this logarithmic, see index_segments). Of equally near segments,
+  // the first.
   double project(const Vec3& p, double* distance) const;
-  // Builds the segment grid used by project(); cell ~ the distances queried (e.g. the radius).
-  void index_segments(double cell);
+  // Builds the segment index used by project() (without it, project() tries every segment).
+  void index_segments();
   // The same, found by walking the chain from arc length s_hint while the distance falls: O(1) for a
   // point whose neighbour's projection is known (a flood over the mesh from the chain).
   double project_from(const Vec3& p, double s_hint, double* distance) const;
@@ -47,8 +48,7 @@ struct SharpChain {
   void finish_geometry(const MeshTopology& mesh);
   int segment_at(double s, double* local) const;
   std::vector<Vec3> vertex_tangents_;
-  std::shared_ptr<BoxGrid> segments_;
-  double cell_ = 0;
+  std::shared_ptr<const BoxTree> segments_;
 };
 
 // The sharp edge nearest to `seed` (within `search_radius`) and the whole chain through it.

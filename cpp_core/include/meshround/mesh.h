@@ -3,6 +3,7 @@
 // across the shared edge.
 #pragma once
 #include <array>
+#include <memory>
 #include <cstdint>
 #include <unordered_map>
 #include <vector>
@@ -75,21 +76,7 @@ double smallest_angle(const Vec3& a, const Vec3& b, const Vec3& c);
 // involved, plus what float32 coordinates (STL, Mesh.Mesh) of this magnitude can hold.
 inline double on_plane_slack(double span, double magnitude) { return 1e-9 * span + 1e-6 * magnitude; }
 
-// Uniform hash grid of axis-aligned boxes: the local searches (chain distance, closest facet) stay
-// proportional to the band, not the mesh.
-class BoxGrid {
- public:
-  explicit BoxGrid(double cell) : cell_(cell) {}
-  void insert(int id, const Vec3& lo, const Vec3& hi);
-  // Ids whose boxes may overlap the box [lo, hi] (may repeat an id).
-  void query(const Vec3& lo, const Vec3& hi, std::vector<int>& out) const;
-
- private:
-  std::array<long, 3> cell_of(const Vec3& p) const;
-  static std::uint64_t key(long i, long j, long k);
-  double cell_;
-  std::unordered_map<std::uint64_t, std::vector<int>> cells_;
-  std::vector<int> oversized_;  // boxes spanning too many cells: returned by every query
-};
+// The private search index of facets and chain segments (cpp_core/src/box_tree.h).
+class BoxTree;
 
 }  // namespace meshround

@@ -3,6 +3,7 @@
 #pragma once
 #include <array>
 #include <functional>
+#include <limits>
 #include <unordered_map>
 #include <unordered_set>
 #include <vector>
@@ -10,6 +11,9 @@
 #include "meshround/mesh.h"
 
 namespace meshround {
+
+// Throws RoundingError(WorkLimit) when `facets` > `budget`, naming the pass that would make them.
+void check_work_budget(double facets, long budget, const char* pass);
 
 struct MeshEdit {
   explicit MeshEdit(const MeshTopology& in) : input(in) {}
@@ -20,8 +24,14 @@ struct MeshEdit {
   std::unordered_set<int> removed;         // input facets removed or replaced by pieces
   std::vector<std::array<int, 3>> added;   // new facets (pieces of cut facets, the round, end caps)
   std::unordered_map<std::uint64_t, int> edge_point;  // input edge -> the trim vertex inserted on it
+  long max_new_facets = std::numeric_limits<long>::max();  // the work budget (RoundOptions::max_new_facets)
 
+  // Refuses with work_limit when `facets` new facets would overrun the budget; `pass` names where.
+  void check_budget(double facets, const char* pass) const { check_work_budget(facets, max_new_facets, pass); }
+  // Each new point costs about two new facets (a triangulated patch has two facets per inner vertex),
+  // so the points made anywhere (trim refinement, rows, end caps) are counted against the budget here.
   int add_point(const Vec3& p) {
+    if (2.0 * double(new_points.size() + 1) > double(max_new_facets)) check_budget(2.0 * double(new_points.size() + 1), "new points");
     new_points.push_back(p);
     return input.num_vertices() + int(new_points.size()) - 1;
   }

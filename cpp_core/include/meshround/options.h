@@ -22,6 +22,10 @@ struct RoundOptions {
   double tolerance = 0.0;              // chordal tolerance of the new facets; <= 0 means r_max / 100
   double feature_angle_deg = 30.0;     // an edge is sharp when its two facets turn by at least this
   double reach = 3.0;                  // base meshes are the facets within reach * r_max of the chain
+  // Work budget: a call that would make more new facets than this (profile stations count as facets)
+  // is refused with work_limit before it runs away. 2,000,000 new facets is a few times the band of a
+  // 1M-facet mesh's longest edges rounded at a tenth of their element size, and ~1 GB of work.
+  long max_new_facets = 2000000;
 
   double max_radius() const;  // the radius, or the largest of the law's
   double effective_tolerance() const { return tolerance > 0 ? tolerance : max_radius() / 100.0; }

@@ -26,14 +26,16 @@ struct ProfileStation {
 // Exact closest points on one base mesh.
 class BaseDistance {
  public:
-  BaseDistance(const MeshTopology& mesh, const std::vector<int>& facets, double cell);
+  BaseDistance(const MeshTopology& mesh, const std::vector<int>& facets);
   // Closest point of the base mesh to p; `facet` and `region` (closest_point_on_triangle's code) out.
-  Vec3 closest(const Vec3& p, double guess_radius, int* facet = nullptr, int* region = nullptr) const;
+  // Exact (a bounding volume hierarchy of the facets, searched branch and bound); of equally near
+  // facets, the first in `facets`.
+  Vec3 closest(const Vec3& p, int* facet = nullptr, int* region = nullptr) const;
 
  private:
   const MeshTopology& mesh_;
   const std::vector<int>& facets_;
-  BoxGrid grid_;
+  std::shared_ptr<const BoxTree> tree_;
 };
 
 struct SpineContext {
