@@ -1,5 +1,6 @@
 // RoundOptions: everything a rounding call can be told, with the defaults the paper uses.
 #pragma once
+#include <functional>
 #include <vector>
 
 #include "meshround/types.h"
@@ -19,6 +20,12 @@ struct RoundOptions {
   double tolerance = 0.0;              // chordal tolerance of the new facets; <= 0 means r_max / 100
   double feature_angle_deg = 30.0;     // an edge is sharp when its two facets turn by at least this
   double reach = 3.0;                  // base meshes are the facets within reach * r_max of the chain
+  // Cancel poll (optional; default none): called often while the run goes (cancel.h), from the
+  // running thread; once it returns true the run stops with RoundingError(ErrorCode::Cancelled), within
+  // about 0.1 s of the request, the input untouched (it always is: the engine works on copies). True at
+  // the first poll: the run is refused at once. It must be cheap and thread-safe, e.g. the load of a
+  // std::atomic<bool> that another thread sets.
+  std::function<bool()> cancelled;
 
   double max_radius() const;
   double effective_tolerance() const { return tolerance > 0 ? tolerance : max_radius() / 100.0; }
