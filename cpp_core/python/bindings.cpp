@@ -7,12 +7,20 @@
 
 #include <Standard_Failure.hxx>
 
+#include <atomic>
+
 #include "meshround/round.h"
 
 namespace py = pybind11;
 using namespace meshround;
 
 namespace {
+
+// A request to stop a run, from any thread: cancel() sets the flag the engine polls (no GIL is needed to
+// poll it: the engine reads the atomic directly while the GIL is released).
+struct CancelToken {
+  std::atomic<bool> flag{false};
+};
 
 Points to_points(const py::array& a, const char* what) {
   auto arr = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(a);
@@ -76,12 +84,18 @@ RoundOptions to_options(double radius, double tolerance, double feature_angle, d
 }
 
 py::dict round_edges_py(const py::array& vertices, const py::array& triangles, const py::array& seeds, double radius,
-                        double tolerance, double feature_angle, double reach, const py::object& radius_law, long max_new_facets) {
+                        double tolerance, double feature_angle, double reach, const py::object& radius_law, long max_new_facets,
+                        const py::object& cancel) {
   const Points V = to_points(vertices, "vertices");
   const Triangles F = to_triangles(triangles);
   const Points S = to_points(seeds, "seeds");
   RoundOptions opt = to_options(radius, tolerance, feature_angle, reach, radius_law);
   if (max_new_facets > 0) opt.max_new_facets = max_new_facets;  // 0: the default budget
+  if (!cancel.is_none()) {
+    if (!py::isinstance<CancelToken>(cancel)) throw RoundingError(ErrorCode::InvalidInput, "cancel must be a CancelToken or None");
+    const std::atomic<bool>* flag = &cancel.cast<CancelToken&>().flag;  // the caller's reference outlives the call
+    opt.cancelled = [flag] { return flag->load(std::memory_order_relaxed); };
+  }
   RoundResult res;
   {
     py::gil_scoped_release release;
@@ -181,9 +195,18 @@ PYBIND11_MODULE(_meshround_core, m) {
       PyErr_SetObject(error_class.ptr(), err.ptr());
     }
   });
+  py::class_<CancelToken>(m, "CancelToken",
+                          "Stops a running round_edges(cancel=token) from another thread: token.cancel(); the run then "
+                          "raises RoundingError with code 'cancelled' within about 0.1 s. One token per run; thread-safe.")
+      .def(py::init<>())
+      .def("cancel", [](CancelToken& t) { t.flag.store(true); }, "Ask the run(s) given this token to stop.")
+      .def_property_readonly("is_cancelled", [](const CancelToken& t) { return t.flag.load(); })
+      .def("__repr__", [](const CancelToken& t) {
+        return std::string("<CancelToken ") + (t.flag.load() ? "cancelled" : "not cancelled") + ">";
+      });
   m.def("round_edges", &round_edges_py, py::arg("vertices"), py::arg("triangles"), py::arg("seeds"), py::arg("radius"),
         py::arg("tolerance") = 0.0, py::arg("feature_angle") = 30.0, py::arg("reach") = 3.0,
-        py::arg("radius_law") = py::none(), py::arg("max_new_facets") = 0,
+        py::arg("radius_law") = py::none(), py::arg("max_new_facets") = 0, py::arg("cancel") = py::none(),
         "Round the chains of sharp edges the seeds select. See CONTRACT.md for the arrays and the report.");
   m.attr("MIN_REACH") = kMinReach;
   m.def("validate_options", [](double radius, double tolerance, double feature_angle, double reach,

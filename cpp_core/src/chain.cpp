@@ -1,4 +1,5 @@
 #include "meshround/chain.h"
+#include "meshround/cancel.h"
 
 #include "box_tree.h"
 
@@ -23,7 +24,9 @@ std::pair<int, int> nearest_sharp_edge(const MeshTopology& mesh, const Vec3& see
                                        double search_radius) {
   int start = -1;
   double dstart = INFINITY;
+  CancelPoll poll(1 << 14);
   for (int f = 0; f < mesh.num_facets(); ++f) {
+    poll.tick();
     const Vec3 a = mesh.corner(f, 0), b = mesh.corner(f, 1), c = mesh.corner(f, 2);
     const Vec3 gap = (a.cwiseMin(b).cwiseMin(c) - seed).cwiseMax(seed - a.cwiseMax(b).cwiseMax(c)).cwiseMax(0.0);
     if (gap.squaredNorm() >= dstart * dstart) continue;  // its bounding box is already farther
@@ -37,6 +40,7 @@ std::pair<int, int> nearest_sharp_edge(const MeshTopology& mesh, const Vec3& see
   double best = INFINITY;
   std::pair<int, int> edge{-1, -1};
   while (!todo.empty()) {
+    poll.tick();
     const auto [d, f] = todo.top();
     todo.pop();
     if (d > best || d > search_radius) break;
@@ -136,6 +140,7 @@ SharpChain trace_chain(const MeshTopology& mesh, const Vec3& seed, double featur
   ChainEnd end_fwd = ChainEnd::Fade, end_bwd = ChainEnd::Fade;
   const size_t limit = size_t(mesh.num_vertices()) + 2;
   while (forward.size() < limit) {
+    poll_cancel();
     const int w = next_chain_vertex(mesh, forward[forward.size() - 2], forward.back(), feature_angle_deg, fold, &end_fwd);
     if (w < 0) break;
     if (w == forward.front()) {
@@ -148,6 +153,7 @@ SharpChain trace_chain(const MeshTopology& mesh, const Vec3& seed, double featur
   if (!chain.closed) {
     int prev = b, v = a;
     while (backward.size() < limit) {
+      poll_cancel();
       const int w = next_chain_vertex(mesh, prev, v, feature_angle_deg, fold, &end_bwd);
       if (w < 0) break;
       backward.push_back(w);
@@ -332,7 +338,9 @@ BaseMeshes collect_base_meshes(const MeshTopology& mesh, const SharpChain& chain
                             " deg) only some of its facets count as sharp: lower the feature angle");
       if (it == base.side_of.end()) base.side_of[f] = side, todo.push_back(f), base.facets[side].push_back(f);
     }
+    CancelPoll poll(256);
     while (!todo.empty()) {
+      poll.tick();
       const int f = todo.back();
       todo.pop_back();
       for (int k = 0; k < 3; ++k) {

@@ -1,4 +1,5 @@
 #include "meshround/improve.h"
+#include "meshround/cancel.h"
 
 #include <algorithm>
 #include <cmath>
@@ -115,7 +116,9 @@ int flip_all(Patch& m, std::vector<int> seeds) {
   for (int t : seeds)
     if (m.alive[t]) push(t);
   int flips = 0;
+  CancelPoll poll(64);
   while (!queue.empty()) {
+    poll.tick();
     const std::uint64_t key = queue.front();
     queue.pop_front();
     const auto& pair = m.edge_tris[key];
@@ -280,6 +283,7 @@ ImproveStats improve_new_facets(MeshEdit& edit, const std::unordered_set<int>& k
     std::sort(candidates.begin(), candidates.end());
     bool changed = false;
     for (const auto& [q, v] : candidates) {
+      poll_cancel();
       const FlatSides sides = flat_sides(m, v);
       if (sides.holes.empty()) continue;
       std::vector<int> made;

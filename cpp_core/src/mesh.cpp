@@ -1,4 +1,5 @@
 #include "meshround/mesh.h"
+#include "meshround/cancel.h"
 
 #include <algorithm>
 #include <cmath>
@@ -43,8 +44,10 @@ MeshTopology::MeshTopology(const Points& V_, const Triangles& F_) : V(V_), F(F_)
         throw RoundingError(ErrorCode::InvalidInput, "vertex " + std::to_string(i) + " has a NaN or infinite coordinate");
   }
   vf_start_.assign(n + 1, 0);
+  CancelPoll poll(1 << 16);
   for (int f = 0; f < m; ++f)
     for (int k = 0; k < 3; ++k) {
+      poll.tick();
       const int v = F(f, k);
       if (v < 0 || v >= n)
         throw RoundingError(ErrorCode::InvalidInput, "facet " + std::to_string(f) + " refers to vertex " + std::to_string(v) +
@@ -54,8 +57,10 @@ MeshTopology::MeshTopology(const Points& V_, const Triangles& F_) : V(V_), F(F_)
   for (int v = 0; v < n; ++v) vf_start_[v + 1] += vf_start_[v];
   vf_.resize(vf_start_[n]);
   std::vector<int> fill(vf_start_.begin(), vf_start_.end() - 1);
-  for (int f = 0; f < m; ++f)
+  for (int f = 0; f < m; ++f) {
+    poll.tick();
     for (int k = 0; k < 3; ++k) vf_[fill[F(f, k)]++] = f;
+  }
 }
 
 bool MeshTopology::facet_has_edge(int f, int a, int b) const {

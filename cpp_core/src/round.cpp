@@ -6,6 +6,7 @@
 #include <set>
 
 #include "guard.h"
+#include "meshround/cancel.h"
 #include "meshround/radius_law.h"
 #include "meshround/improve.h"
 #include "meshround/sew.h"
@@ -19,7 +20,9 @@ using Clock = std::chrono::steady_clock;
 class PassTimer {
  public:
   explicit PassTimer(RoundReport& r) : report_(r), t_(Clock::now()) {}
+  // Every pass's end is also a cancel poll.
   void done(const char* pass) {
+    poll_cancel();
     const auto now = Clock::now();
     report_.seconds[pass] += std::chrono::duration<double>(now - t_).count();
     t_ = now;
@@ -80,6 +83,7 @@ double loft_error(const RoundingSurface& surface, const ProfileStation& exact) {
 
 // The ball at arc length s; when a radius law makes it impossible, the error names the control point.
 ProfileStation station(const SpineContext& ctx, const RadiusLaw& law, double s) {
+  poll_cancel();
   try {
     return solve_station(ctx, s, law.at(s));
   } catch (const RoundingError& e) {
@@ -254,7 +258,8 @@ RoundedChain round_one_chain(const MeshTopology& mesh, const Vec3& seed, const R
       try {
         const RoundedChain probe = round_one_chain(mesh, seed, o, scratch, V, F, true);
         if (probe.report.thin_facets > 0) continue;
-      } catch (const RoundingError&) {
+      } catch (const RoundingError& e) {
+        if (e.code == ErrorCode::Cancelled) throw;
         continue;  // e.g. the wider reach runs into another sharp feature
       }
       rep.reach_for_room = o.reach, rep.min_angle_at_reach_for_room = scratch.min_new_angle_deg;
@@ -321,6 +326,8 @@ std::vector<SharpChain> find_chains(const Points& V, const Triangles& F, const s
 
 RoundResult round_edges(const Points& V, const Triangles& F, const std::vector<Vec3>& seeds, const RoundOptions& opt) {
   const auto start = Clock::now();
+  const CancelScope cancel_scope(opt.cancelled);
+  poll_cancel();  // cancelled before the call: refused at once
   validate_options(opt);
   check_precision(opt, coordinate_magnitude(V));
   if (seeds.empty()) throw RoundingError(ErrorCode::InvalidInput, "no seed given: pick a point on a sharp edge");
@@ -353,6 +360,7 @@ RoundResult round_edges(const Points& V, const Triangles& F, const std::vector<V
   Points cur_V;
   Triangles cur_F;
   for (size_t k = 0; k < chain_seeds.size(); ++k) {
+    poll_cancel();
     Points next_V;
     Triangles next_F;
     if (k == 0) {

@@ -1,4 +1,5 @@
 #include "meshround/sew.h"
+#include "meshround/cancel.h"
 
 #include <cstdio>
 #include <cstdlib>
@@ -121,6 +122,7 @@ SewStats sew_round(MeshEdit& edit, size_t round_begin, size_t round_end, const R
     next[e.b] = e.a;
   }
   while (!next.empty()) {
+    poll_cancel();
     std::vector<int> loop{next.begin()->first};
     bool closed = false;
     for (size_t guard = 0; guard <= next.size() + 1; ++guard) {
@@ -160,8 +162,9 @@ void write_mesh(const MeshEdit& edit, Points& V, Triangles& F) {
   for (int f : edit.removed) removed[f] = 1;
   std::vector<std::array<int, 3>> facets;
   facets.reserve(in.num_facets() - edit.removed.size() + edit.added.size());
+  CancelPoll poll(1 << 16);
   for (int f = 0; f < in.num_facets(); ++f)
-    if (!removed[f]) facets.push_back({in.F(f, 0), in.F(f, 1), in.F(f, 2)});
+    if (poll.tick(), !removed[f]) facets.push_back({in.F(f, 0), in.F(f, 1), in.F(f, 2)});
   facets.insert(facets.end(), edit.added.begin(), edit.added.end());
   for (const auto& f : facets)
     for (int v : f) index[v] = 0;

@@ -1,4 +1,5 @@
 #include "meshround/tessellate.h"
+#include "meshround/cancel.h"
 
 #include <algorithm>
 #include <cmath>
@@ -194,6 +195,7 @@ RoundMeshStats mesh_rounding_surface(const RoundingSurface& surface, const std::
     tris.clear();
     std::vector<std::vector<RowPoint>> rows{first_row};
     auto add_row = [&](const std::vector<double>& samples, double v) {
+      poll_cancel();
       std::vector<RowPoint> row;
       for (size_t i = 0; i < samples.size(); ++i) {
         if (surface.closed && i + 1 == samples.size()) {  // a loop's row ends where it began
@@ -217,6 +219,7 @@ RoundMeshStats mesh_rounding_surface(const RoundingSurface& surface, const std::
     rows.push_back(last_row);
     // Zip neighbouring rows, always taking the shorter diagonal.
     for (size_t j = 0; j + 1 < rows.size(); ++j) {
+      poll_cancel();
       const auto &b = rows[j], &t = rows[j + 1];
       size_t i = 0, k = 0;
       while (i + 1 < b.size() || k + 1 < t.size()) {
@@ -236,6 +239,7 @@ RoundMeshStats mesh_rounding_surface(const RoundingSurface& surface, const std::
     // figure), and they never call for refinement.
     const double strip_a = graded[0].empty() ? -1 : graded[0].back().v, strip_b = graded[1].empty() ? 2 : graded[1].front().v;
     for (const auto& tri : tris) {
+      poll_cancel();
       const bool in_strip = std::all_of(tri.begin(), tri.end(), [&](const RowPoint& p) { return p.v <= strip_a; }) ||
                             std::all_of(tri.begin(), tri.end(), [&](const RowPoint& p) { return p.v >= strip_b; });
       double worst = 0, from_surface = 0;
@@ -274,6 +278,7 @@ RoundMeshStats mesh_rounding_surface(const RoundingSurface& surface, const std::
     };
     std::vector<double> refined{U.front()};
     for (size_t i = 1; i < U.size(); ++i) {
+      poll_cancel();
       const double a = U[i - 1], b = U[i];
       // Never finer than the least step (a facet that still strays then sits on a trim point that
       // lies off the surface: thinner facets would not bring it nearer).

@@ -7,6 +7,7 @@
 #include <string>
 #include <unordered_map>
 
+#include "meshround/cancel.h"
 #include "meshround/mesh_edit.h"
 #include "planar.h"
 #include "split_polygon.h"
@@ -39,7 +40,9 @@ void improve_by_flips(const std::vector<Vec3>& P, const std::vector<Eigen::Vecto
     auto& pair = sides.at(key(a, b));
     (pair[0] == from ? pair[0] : pair[1]) = to;
   };
+  CancelPoll poll(64);
   for (size_t flips = 0; !todo.empty() && flips < 10 * tris.size() + 100;) {
+    poll.tick();
     const std::uint64_t e = todo.back();
     todo.pop_back();
     auto it = sides.find(e);
@@ -128,6 +131,7 @@ void add_inner_points(std::vector<Vec3>& P, std::vector<Eigen::Vector2d>& Q, std
   };
   std::vector<char> hopeless(tris.size(), 0);
   for (size_t added = 0; added < 4 * boundary + 16;) {
+    poll_cancel();
     // The largest bad triangle first: its mending point lands deep inside and later ones grade towards
     // the short sides (the worst first would pile points up at the trim line).
     int worst = -1;
@@ -182,6 +186,7 @@ void smooth_inner_points(std::vector<Vec3>& P, std::vector<Eigen::Vector2d>& Q, 
   for (int sweep = 0; sweep < 16; ++sweep) {
     bool moved = false;
     for (size_t k = boundary; k < Q.size(); ++k) {
+      poll_cancel();
       std::vector<int> star;
       Eigen::Vector2d centre = Eigen::Vector2d::Zero();
       for (int t = 0; t < int(tris.size()); ++t)
@@ -228,6 +233,7 @@ std::vector<std::array<int, 3>> clip_ears(const std::vector<Vec3>& P, const std:
   for (size_t i = 0; i < idx.size(); ++i) idx[i] = int(i);
   std::vector<std::array<int, 3>> tris;
   while (idx.size() > 3) {
+    poll_cancel();
     int best = -1;
     double best_q = -1;
     const int m = int(idx.size());
@@ -299,6 +305,7 @@ std::vector<std::array<int, 3>> best_triangulation(const std::vector<Vec3>& P, c
   for (int i = 0; i + 1 < n; ++i) best[i * n + i + 1] = INFINITY;
   for (int span = 2; span < n; ++span)
     for (int i = 0; i + span < n; ++i) {
+      poll_cancel();
       const int j = i + span;
       if (!usable[i * n + j]) continue;
       for (int k = i + 1; k < j; ++k) {

@@ -1,4 +1,5 @@
 #include "meshround/trim.h"
+#include "meshround/cancel.h"
 
 #include <algorithm>
 #include <cmath>
@@ -209,6 +210,7 @@ TrimLines trim_base_meshes(const MeshTopology& mesh, const SharpChain& chain, co
     };
     for (int f : base.facets[side])
       for (int k = 0; k < 3; ++k) {
+        poll_cancel();
         const int v = mesh.F(f, k);
         if (vs.count(v)) continue;
         VertexSide s;
@@ -338,6 +340,7 @@ TrimLines trim_base_meshes(const MeshTopology& mesh, const SharpChain& chain, co
           if (!cut_facets.count(g)) rebuild.insert(g);
       }
     for (int f : base.facets[side]) {
+      poll_cancel();
       int in = 0, outside = 0;
       for (int k = 0; k < 3; ++k) (vs[mesh.F(f, k)].d < 0 ? in : outside) += 1;
       if (in == 0) continue;
@@ -395,6 +398,7 @@ TrimLines trim_base_meshes(const MeshTopology& mesh, const SharpChain& chain, co
     std::unordered_map<std::uint64_t, std::vector<int>> split;  // edge (a < b) -> its points, a to b
     for (int f : base.facets[side])
       for (int k = 0; k < 3; ++k) {
+        poll_cancel();
         int a = mesh.F(f, k), b = mesh.F(f, (k + 1) % 3);
         if (a > b) std::swap(a, b);
         const VertexSide &sa = vs[a], &sb = vs[b];
@@ -414,6 +418,7 @@ TrimLines trim_base_meshes(const MeshTopology& mesh, const SharpChain& chain, co
     for (const auto& [key, ids] : split)
       for (int g : mesh.edge_facets(int(key >> 32), int(key & 0xffffffffu))) rebuild.insert(g);
     for (int g : rebuild) {
+      poll_cancel();
       if (!edit.removed.insert(g).second) continue;  // in the band
       const std::vector<int> polygon = facet_with_edge_points(mesh, g, [&](int p, int q, std::vector<int>& poly) {
         auto it = split.find(edge_key(p, q));
@@ -434,6 +439,7 @@ TrimLines trim_base_meshes(const MeshTopology& mesh, const SharpChain& chain, co
   }
   // Facets outside the base meshes that share a cut edge get the cut point too (no T-junctions).
   for (const auto& [key, id] : edit.edge_point) {
+    poll_cancel();
     for (int g : mesh.edge_facets(int(key >> 32), int(key & 0xffffffffu))) {
       if (base.side_of.count(g) || edit.removed.count(g)) continue;
       edit.removed.insert(g);

@@ -26,7 +26,8 @@ def observed(tmp_path_factory):
     os.makedirs(home / "Mod")
     os.symlink(os.path.join(REPO, "Mod", "MeshRound"), home / "Mod" / "MeshRound")
     os.makedirs(ARTIFACTS, exist_ok=True)
-    for name in ("gui_sharp.png", "gui_rounded.png", "gui_preview.png", "gui_die_preview.png"):
+    for name in ("gui_sharp.png", "gui_rounded.png", "gui_preview.png", "gui_die_preview.png",
+                 "gui_cancel_preview.png"):
         if os.path.exists(os.path.join(ARTIFACTS, name)):
             os.remove(os.path.join(ARTIFACTS, name))
     result = home / "observed.json"
@@ -200,6 +201,45 @@ def test_screenshot_shows_the_rounded_model(observed):
     shades_rounded = len(np.unique(rounded.mean(axis=2)[on_round].round()))
     shades_sharp = len(np.unique(sharp.mean(axis=2)[on_round].round()))
     assert shades_rounded >= 8 and shades_sharp <= 4, (shades_rounded, shades_sharp)
+
+
+CANCEL_BOUND_S = 0.5  # from Esc / the Cancel click to the run's return; measured: a few ms to 50 ms
+
+
+def test_esc_and_cancel_stop_long_runs(observed):
+    """Esc or Cancel while a preview or OK runs (the room probe's seconds on the acute ridge) stops it
+    within CANCEL_BOUND_S; Esc keeps the panel open and says so, Cancel closes it; the document's objects
+    and its undo stack are as before every time.  The latencies go to tests/artifacts."""
+    runs = {name: observed[name] for name in ("esc_preview", "cancel_ok", "esc_ok", "cancel_preview")}
+    for name, run in runs.items():
+        assert run["after"] == run["before"], (name, run)
+        assert run["before"]["undo_names"] == ["Label"], run["before"]
+        assert run["latency_s"] is not None, f"{name}: the run ended before the request"
+        assert run["latency_s"] < CANCEL_BOUND_S, (name, run["latency_s"])
+    for name in ("esc_preview", "esc_ok"):
+        run = runs[name]
+        assert run["cancelled_by"] == "esc" and run["panel_open"] and run["dialog_open"], run
+        assert "cancelled" in run["status"], run["status"]
+    assert runs["esc_preview"]["result"] is False
+    for name in ("cancel_ok", "cancel_preview"):
+        run = runs[name]
+        assert run["cancelled_by"] == "button" and not run["dialog_open"], run
+        assert run["closed_after_s"] is not None
+    assert observed["cancel_ok"]["base_visible"] and observed["cancel_ok"]["base_transparency"] == 0
+    recompute = observed["esc_recompute"]  # outside the panel, under FreeCAD's progress indicator
+    assert recompute["latency_s"] is not None and recompute["latency_s"] < CANCEL_BOUND_S, recompute
+    assert "Invalid" in recompute["state"] and recompute["status"] == "the rounding was cancelled"
+    # what the user sees: the panel's status line says the preview was cancelled, in red
+    assert os.path.exists(observed["esc_preview_screenshot"])
+    try:
+        with open(TIMINGS) as stream:
+            timings = json.load(stream)
+    except (OSError, ValueError):
+        timings = {}
+    timings["gui_cancel_latency_s"] = {name: observed[name]["latency_s"]
+                                       for name in (*runs, "esc_recompute")}
+    with open(TIMINGS, "w") as stream:
+        json.dump(timings, stream, indent=1)
 
 
 def record_timings(die):

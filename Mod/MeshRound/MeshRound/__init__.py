@@ -5,6 +5,8 @@
     obj = MeshRound.make_rounding(base_feature, seeds, radius)    # parametric Mesh feature "Rounding"
     wires = MeshRound.trace_chains(mesh, seeds)                   # the chains seeds select
     MeshRound.quality_note(res.report)                            # why new facets are under 10 deg, if any
+    token = MeshRound.CancelToken()                               # round_edges(..., cancel=token); from
+    token.cancel()                                                # another thread: stops the run
 
 Outside FreeCAD, put /usr/lib/freecad-python3/lib and <repo>/Mod/MeshRound on sys.path first.
 
@@ -22,6 +24,7 @@ _EXPORTS = {
     "RoundingResult": "api",
     "quality_note": "api",
     "RoundingError": "errors",
+    "CancelToken": "errors",
     "make_rounding": "objects.rounding",
 }
 __all__ = list(_EXPORTS)

@@ -1,7 +1,8 @@
 """The console API: round sharp edge chains of a Mesh.Mesh with a rolling ball.
 
     import MeshRound
-    res = MeshRound.round_edges(mesh, seeds, radius, tolerance=None, feature_angle=30.0, reach=3.0)
+    res = MeshRound.round_edges(mesh, seeds, radius, tolerance=None, feature_angle=30.0, reach=3.0,
+                                cancel=None)
     res.mesh, res.surfaces, res.spines, res.chains, res.contacts, res.report
 
 Only this module calls the compiled engine (errors.py imports it for its exception class).  It validates
@@ -17,9 +18,9 @@ import time
 import numpy as np
 
 from . import inputs, meshconv, progress, shapes
-from .errors import RoundingError, require_core
+from .errors import CancelToken, RoundingError, check_cancelled, require_core
 
-__all__ = ["RoundingError", "RoundingResult", "round_edges", "round_arrays", "trace_chains",
+__all__ = ["RoundingError", "CancelToken", "RoundingResult", "round_edges", "round_arrays", "trace_chains",
            "trace_arrays", "quality_note"]
 
 
@@ -45,7 +46,8 @@ class RoundingResult:
                 f"{r.get('facets_out')} facets, {r.get('seconds', 0.0):.3f} s>")
 
 
-def round_edges(mesh, seeds, radius, tolerance=None, feature_angle=30.0, reach=3.0, max_new_facets=None):
+def round_edges(mesh, seeds, radius, tolerance=None, feature_angle=30.0, reach=3.0, max_new_facets=None,
+                cancel=None):
     """Round the sharp-edge chains of `mesh` that pass nearest to `seeds`.
 
     mesh: Mesh.Mesh (not modified).  seeds: a Vector, an (x, y, z) triple, or a list of them; each picks
@@ -53,25 +55,31 @@ def round_edges(mesh, seeds, radius, tolerance=None, feature_angle=30.0, reach=3
     points for a variable radius.  tolerance: chordal tolerance, None or 0 means largest radius / 100.
     feature_angle: degrees between facets from which an edge is sharp.  reach: facets within reach * r
     of a chain are re-meshed.  max_new_facets: the work budget (None: the engine's default, 2,000,000);
-    a rounding that would make more new facets is refused (code work_limit).  Returns a RoundingResult;
-    raises RoundingError.
+    a rounding that would make more new facets is refused (code work_limit).  cancel: a
+    MeshRound.CancelToken, or None; token.cancel() from another thread stops the run within about 0.1 s with RoundingError(code "cancelled"), the input untouched
+    (a token cancelled before the call is refused at once).  Returns a RoundingResult; raises
+    RoundingError.
     """
     started = time.perf_counter()
+    check_cancelled(cancel)
     inputs.check_mesh(mesh)
-    arguments = _engine_arguments(seeds, radius, tolerance, feature_angle, reach, max_new_facets)
+    arguments = _engine_arguments(seeds, radius, tolerance, feature_angle, reach, max_new_facets, cancel)
     vertices, triangles = meshconv.mesh_to_arrays(mesh)
     result = _round(vertices, triangles, arguments)
     result.mesh  # noqa: B018  (build it now: part of this call's cost, and of report["seconds"])
+    check_cancelled(cancel)  # a request while the result was built: nothing is returned
     result.report["seconds"] = time.perf_counter() - started
     return result
 
 
-def round_arrays(vertices, triangles, seeds, radius, tolerance=None, feature_angle=30.0, reach=3.0, max_new_facets=None):
+def round_arrays(vertices, triangles, seeds, radius, tolerance=None, feature_angle=30.0, reach=3.0,
+                 max_new_facets=None, cancel=None):
     """round_edges for a mesh given as vertices (n, 3) and triangles (m, 3); result.mesh is built lazily."""
     started = time.perf_counter()
+    check_cancelled(cancel)
     if len(triangles) == 0:
         raise RoundingError("mesh is empty: it has no facets")
-    arguments = _engine_arguments(seeds, radius, tolerance, feature_angle, reach, max_new_facets)
+    arguments = _engine_arguments(seeds, radius, tolerance, feature_angle, reach, max_new_facets, cancel)
     result = _round(vertices, triangles, arguments)
     result.report["seconds"] = time.perf_counter() - started
     return result
@@ -113,7 +121,7 @@ def trace_arrays(vertices, triangles, seeds, feature_angle=30.0):
     return shapes.polyline_wires([c["points"] for c in found], [c["closed"] for c in found])
 
 
-def _engine_arguments(seeds, radius, tolerance, feature_angle, reach, max_new_facets=None):
+def _engine_arguments(seeds, radius, tolerance, feature_angle, reach, max_new_facets=None, cancel=None):
     """Keyword arguments for core.round_edges, every one checked."""
     largest_radius, law = inputs.radius_and_law(radius)
     if max_new_facets is not None and (isinstance(max_new_facets, bool) or not isinstance(max_new_facets, int) or max_new_facets < 1):
@@ -127,6 +135,7 @@ def _engine_arguments(seeds, radius, tolerance, feature_angle, reach, max_new_fa
         reach=inputs.reach_value(reach),
         radius_law=law,
         max_new_facets=int(max_new_facets or 0),  # 0: the engine's default
+        cancel=cancel,
     )
 
 
@@ -136,6 +145,7 @@ def _round(vertices, triangles, arguments):
     seeds = arguments.pop("seeds")
     radius = arguments.pop("radius")
     raw = _call_engine("round_edges", vertices, triangles, seeds, radius, **arguments)
+    check_cancelled(arguments["cancel"])  # asked for after the engine's last poll
     out_vertices, out_triangles = _checked_mesh_arrays(raw["vertices"], raw["triangles"])
     contacts = [side for pair in raw["contacts"] for side in pair]
     closed = list(raw["closed"])

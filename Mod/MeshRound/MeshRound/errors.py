@@ -4,13 +4,29 @@ The engine's own exception class is the public one, so `except MeshRound.Roundin
 raised in C++ and in Python alike.  Each has `.code`, one of CODES (README, "Errors").  If the compiled module is missing (not built yet), `import MeshRound`
 still works, the workbench still loads, and every call raises a RoundingError that says how to build it.
 """
+import threading
+
 try:
     from . import _meshround_core as core
     RoundingError = core.RoundingError
+    CancelToken = core.CancelToken
     CORE_IMPORT_ERROR = None
 except ImportError as exc:  # not built, or built for another Python
     core = None
     CORE_IMPORT_ERROR = exc
+
+    class CancelToken:
+        """Stand-in for the engine's CancelToken (no engine: every call fails anyway)."""
+
+        def __init__(self):
+            self._event = threading.Event()
+
+        def cancel(self):
+            self._event.set()
+
+        @property
+        def is_cancelled(self):
+            return self._event.is_set()
 
     class RoundingError(ValueError):
         """A rounding could not be made; the message names the cause, .code the kind (as the engine's)."""
@@ -18,6 +34,19 @@ except ImportError as exc:  # not built, or built for another Python
         def __init__(self, message, code="invalid_input"):
             super().__init__(message)
             self.code = code
+
+
+CANCELLED_MESSAGE = "the rounding was cancelled"  # the engine's own (kCancelledMessage)
+
+
+def check_cancelled(cancel):
+    """Raise RoundingError(code "cancelled") if the CancelToken `cancel` (or None) was cancelled."""
+    if cancel is None:
+        return
+    if not isinstance(cancel, CancelToken):
+        raise RoundingError(f"cancel must be a MeshRound.CancelToken or None, not {type(cancel).__name__}")
+    if cancel.is_cancelled:
+        raise RoundingError(CANCELLED_MESSAGE, "cancelled")
 
 
 # Every code a RoundingError can carry (the engine's ErrorCode, cpp_core/include/meshround/types.h).

@@ -1,5 +1,6 @@
 // RoundOptions: everything a rounding call can be told, with the defaults the paper uses.
 #pragma once
+#include <functional>
 #include <vector>
 
 #include "meshround/types.h"
@@ -26,6 +27,12 @@ struct RoundOptions {
   // is refused with work_limit before it runs away. 2,000,000 new facets is a few times the band of a
   // 1M-facet mesh's longest edges rounded at a tenth of their element size, and ~1 GB of work.
   long max_new_facets = 2000000;
+  // Cancel poll (optional; default none): called often while the run goes (cancel.h), from the
+  // running thread; once it returns true the run stops with RoundingError(ErrorCode::Cancelled), within
+  // about 0.1 s of the request, the input untouched (it always is: the engine works on copies). True at
+  // the first poll: the run is refused at once. It must be cheap and thread-safe, e.g. the load of a
+  // std::atomic<bool> that another thread sets.
+  std::function<bool()> cancelled;
 
   double max_radius() const;  // the radius, or the largest of the law's
   double effective_tolerance() const { return tolerance > 0 ? tolerance : max_radius() / 100.0; }

@@ -75,10 +75,10 @@ class Rounding:
     def execute(self, obj):
         base = obj.Base
         check_base(base)
-        with busy(f"Rounding edges of {base.Label}"):
+        with busy(f"Rounding edges of {base.Label} (Esc cancels)") as token:
             result = api.round_edges(base.Mesh, list(obj.Seeds), radius_argument(obj),
                                      tolerance=obj.Tolerance.Value or None,
-                                     feature_angle=obj.FeatureAngle.Value, reach=obj.Reach)
+                                     feature_angle=obj.FeatureAngle.Value, reach=obj.Reach, cancel=token)
         obj.Mesh = result.mesh
         surfaces_feature.update_surfaces(obj, result.surfaces)
         obj.Statistics = {key: str(value) for key, value in result.report.items()

@@ -8,6 +8,11 @@ The panel never touches the document before OK: chain highlight and preview are 
 base mesh is only shown ghosted (restored on close).  OK runs FreeCADGui.doCommand lines (so macros record
 them) inside one undo transaction: MeshRound.make_rounding for a new feature, property assignments when
 editing one (double click on a Rounding).
+
+Preview and OK run the engine on a worker thread while the window stays alive (progress.py).  Esc during
+a run cancels it (within about 0.1 s) and the panel says so; Cancel during a run cancels it and closes the
+panel.  A cancelled OK undoes its transaction: the document and the undo stack are as they were.  A value
+changed during a preview cancels that preview and starts a new one.
 """
 import contextlib
 import weakref
@@ -16,7 +21,7 @@ import FreeCAD
 import FreeCADGui
 from PySide import QtCore, QtGui
 
-from .. import api, meshconv, shapes
+from .. import api, meshconv, progress, shapes
 from ..errors import RoundingError
 from . import overlays
 from .round_edges_form import PICK_LAW_POINT, RoundEdgesForm, quantity_value
@@ -46,6 +51,10 @@ class RoundEdgesPanel:
         self.seeds = [FreeCAD.Vector(p) for p in values["seeds"]]
         self.law = list(values["law"])
         self.chain_wires, self.result, self.error = [], None, None
+        self._running = None        # the CancelWatch of the run under way (preview or OK), else None
+        self._rerun = False         # a value changed during a preview: preview again once it stopped
+        self._close_requested = False  # reject() during a run: close once it stopped
+        self.cancelled_by = None    # how the last run was cancelled: None, "esc", "button" or "panel"
 
         self.form = RoundEdgesForm(values["radius"], values["tolerance"], values["feature_angle"],
                                    values["reach"])
@@ -151,17 +160,30 @@ class RoundEdgesPanel:
         return p, final
 
     def update_preview(self):
+        if self._running is not None:  # a value changed meanwhile: stop that preview, then start anew
+            self._rerun = True
+            progress.cancel_all()
+            return
         self.result = None
         self._preview.clear()
         if not self.seeds:
             self.form.show_status("Click near a sharp edge of the mesh to select it.")
             return
+        watch = None
         try:
             parameters, final_tolerance = self.preview_parameters()
-            with _wait_cursor():  # no progress indicator: its event filter would eat the keys typed meanwhile
-                self.result = api.round_arrays(self.vertices, self.triangles, **parameters)
+            self.form.show_status("Computing the preview ... (Esc stops it)")
+            # No progress indicator: its event filter would eat the keys typed meanwhile.
+            with self._cancellable() as watch, progress.busy("Preview", indicator=False) as token:
+                self.result = api.round_arrays(self.vertices, self.triangles, cancel=token, **parameters)
         except (RoundingError, ValueError) as exc:
-            self._show_error(str(exc))
+            self.result = None
+            if getattr(exc, "code", None) == "cancelled":
+                self._after_cancel((watch and watch.by) or "panel", "Preview cancelled.")
+            else:
+                self._show_error(str(exc))
+            return
+        if self._after_run():
             return
         contacts = [shapes.wire_points(w) for w in self.result.contacts]
         self._preview.show(overlays.mesh_node(self.result.vertices, self.result.triangles),
@@ -185,26 +207,84 @@ class RoundEdgesPanel:
         view_state = self._leave_view_state()  # before the commands: make_rounding hides the base itself
         names_before = {o.Name for o in self.doc.Objects}
         self.doc.openTransaction("Edit rounding" if self.feature else "Round edges")
-        try:
-            for line in commands + [f"{_doc_expr(self.doc)}.recompute()"]:
-                FreeCADGui.doCommand(line)
-            failure = self._recompute_failure(names_before)
-        except Exception as exc:  # doCommand reports Python errors as generic exceptions
-            failure = f"Could not apply: {exc}"
-        if failure:
+        with self._cancellable() as watch:  # the recompute runs the engine under busy(): Esc reaches us
+            try:
+                for line in commands + [f"{_doc_expr(self.doc)}.recompute()"]:
+                    FreeCADGui.doCommand(line)
+                failure = self._recompute_failure(names_before)
+            except Exception as exc:  # doCommand reports Python errors as generic exceptions
+                failure = f"Could not apply: {exc}"
+        if watch.by == "esc" and not failure:
+            watch.by = None  # Esc after the engine's last poll: the rounding is made, and kept
+        if failure or watch.by:
             self.doc.abortTransaction()
             _apply_view_state(view_state)  # e.g. make_rounding hid the base: show it as it was
             self._enter_view_state()
-            self._show_error(failure)
+            if watch.by:
+                self._after_cancel(watch.by, "Rounding cancelled: the document is unchanged.")
+            else:
+                self._show_error(failure)
+                self._after_run()
             return False
         self.doc.commitTransaction()
         self._finish()
         return True
 
     def reject(self):
+        if self._running is not None:  # mid-run (e.g. a script): stop the run, close once it stopped
+            self._close_requested = True
+            self._running.cancel("panel")
+            return False
         self._leave_view_state()
         self._finish()
         return True
+
+    def cancel_run(self):
+        """What Esc does during a run: stop it, keep the panel open.  True if a run was going."""
+        if self._running is None:
+            return False
+        self._running.cancel("esc")
+        return True
+
+    def running(self):
+        return self._running is not None
+
+    @contextlib.contextmanager
+    def _cancellable(self):
+        """The block is a run: Esc and the task dialog's Cancel button cancel it (progress.CancelWatch)."""
+        self.cancelled_by = None
+        with progress.CancelWatch([_task_cancel_button()]) as watch:
+            self._running = watch
+            try:
+                yield watch
+            finally:
+                self._running = None
+
+    def _after_cancel(self, by, message):
+        """A run stopped on request: close (Cancel), preview again (a value changed), or say so (Esc)."""
+        self.cancelled_by = by
+        if by == "button":
+            self._close_requested = True
+        if self._after_run():
+            return
+        self.form.show_status(message, error=True)
+
+    def _after_run(self):
+        """Act on what was asked during the run; True if the panel closed or a new preview follows."""
+        if self._close_requested:
+            self._close_requested = False
+            self._rerun = False
+            QtCore.QTimer.singleShot(0, self._close_now)  # out of the call stack that ran the engine
+            return True
+        if self._rerun:
+            self._rerun = False
+            self._timer.start()
+            return True
+        return False
+
+    def _close_now(self):
+        if active_panel() is self:
+            self.reject()
 
     def getStandardButtons(self):
         return int(QtGui.QDialogButtonBox.Ok | QtGui.QDialogButtonBox.Cancel)
@@ -364,13 +444,13 @@ class _PickObserver:
         QtCore.QTimer.singleShot(0, FreeCADGui.Selection.clearSelection)
 
 
-@contextlib.contextmanager
-def _wait_cursor():
-    QtGui.QApplication.setOverrideCursor(QtCore.Qt.WaitCursor)
-    try:
-        yield
-    finally:
-        QtGui.QApplication.restoreOverrideCursor()
+def _task_cancel_button():
+    """The Cancel button of the open task dialog, or None."""
+    for box in FreeCADGui.getMainWindow().findChildren(QtGui.QDialogButtonBox):
+        button = box.button(QtGui.QDialogButtonBox.Cancel)
+        if button is not None and button.isVisible():
+            return button
+    return None
 
 
 def _apply_view_state(saved):
