@@ -134,7 +134,7 @@ inline void prism(ByteReader& in, Builder& b, std::vector<Vec3>& features, doubl
     if (!(area > 1e-6)) prof = {{0, 0}, {W, 0}, {W, H}, {0, H}};
   }
   const double L = in.uniform(10, 120);
-  const int seg = in.range(1, 8), nx = in.range(1, 40);
+  const int seg = in.range(1, 4), nx = in.range(1, 16);
   const int caps = in.below(3);  // 0 open tube, 1 one cap, 2 both
   const int diag_mode = in.below(3);
   const std::uint32_t diag_seed = in.u8();
@@ -168,7 +168,7 @@ inline void prism(ByteReader& in, Builder& b, std::vector<Vec3>& features, doubl
 
 // Height-field sheet z = h(x, y) with a crease: a fold, a ridge, a step pocket, or two folds.
 inline void sheet(ByteReader& in, Builder& b, std::vector<Vec3>& features, double& element) {
-  const int nx = in.range(2, 45), ny = in.range(2, 45);
+  const int nx = in.range(2, 24), ny = in.range(2, 24);
   const double Lx = in.uniform(10, 100), Ly = in.uniform(10, 100);
   const int kind = in.below(4);
   const double phi = in.uniform(0, M_PI), slope = std::tan(in.uniform(1, 89) * M_PI / 180);
@@ -300,7 +300,7 @@ inline FuzzCase decode_case(const std::uint8_t* data, std::size_t size) {
     if (mode < 6 && !c.features.empty()) c.seeds.push_back(c.features[in.below(int(c.features.size()))] + (mode < 4 ? 0.01 : 0.5) * std::min(hs, r) * off);
     else c.seeds.push_back(lo + (hi - lo).cwiseProduct(0.5 * (off + Vec3::Ones())));
   }
-  o.tolerance = in.chance(128) ? 0 : r * std::pow(10.0, in.uniform(-3.2, 0.3));
+  o.tolerance = in.chance(128) ? 0 : r * std::pow(10.0, in.chance(16) ? in.uniform(-3.2, -2) : in.uniform(-2, 0.3));
   o.feature_angle_deg = in.chance(160) ? 30 : in.uniform(0.5, 179.5);
   o.reach = in.chance(160) ? 3 : (in.chance(16) ? in.uniform(0, 1000) : in.uniform(1, 12));
   return c;
