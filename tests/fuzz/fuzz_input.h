@@ -20,18 +20,31 @@ class ByteReader {
  public:
   ByteReader(const std::uint8_t* d, std::size_t n) : d_(d), n_(n) {}
   std::uint8_t u8() { return i_ < n_ ? d_[i_++] : 0; }
-  std::uint16_t u16() { return std::uint16_t(u8() | (u8() << 8)); }
-  std::uint32_t u32() { return std::uint32_t(u16()) | (std::uint32_t(u16()) << 16); }
+  // Every read is its own statement: the order of evaluation of operands and arguments is unspecified
+  // (clang reads left to right, gcc right to left), and the decoding must not depend on the compiler.
+  std::uint16_t u16() {
+    const unsigned lo = u8(), hi = u8();
+    return std::uint16_t(lo | (hi << 8));
+  }
+  std::uint32_t u32() {
+    const std::uint32_t lo = u16(), hi = u16();
+    return lo | (hi << 16);
+  }
   double unit() { return u16() / 65535.0; }                        // [0, 1]
   double uniform(double lo, double hi) { return lo + (hi - lo) * unit(); }
   int below(int n) { return n <= 1 ? 0 : int(u8() % n); }
   int range(int lo, int hi) { return lo + below(hi - lo + 1); }
   bool chance(int in256) { return u8() < in256; }
   double raw_double() {  // any bit pattern: NaN, inf, denormals, huge
-    std::uint64_t b = std::uint64_t(u32()) | (std::uint64_t(u32()) << 32);
+    const std::uint64_t lo = u32(), hi = u32();
+    const std::uint64_t b = lo | (hi << 32);
     double x;
     std::memcpy(&x, &b, 8);
     return x;
+  }
+  Vec3 vec(double lo, double hi) {  // x, then y, then z
+    const double x = uniform(lo, hi), y = uniform(lo, hi), z = uniform(lo, hi);
+    return Vec3(x, y, z);
   }
   bool exhausted() const { return i_ >= n_; }
 
@@ -262,12 +275,15 @@ inline FuzzCase decode_case(const std::uint8_t* data, std::size_t size) {
     T.push_back({t[1], t[0], b.add(m)});  // a fin on edge (t0, t1)
   }
   // Placement: rotation, scale, translation (far from the origin tests float-like magnitudes).
-  const Vec3 axis = Vec3(in.uniform(-1, 1), in.uniform(-1, 1), in.uniform(-1, 1)) + Vec3(1e-3, 0, 0);
+  const Vec3 axis = in.vec(-1, 1) + Vec3(1e-3, 0, 0);
   const double angle = in.chance(128) ? 0 : in.uniform(0, 2 * M_PI);
   const Eigen::Matrix3d rot = Eigen::AngleAxisd(angle, axis.normalized()).toRotationMatrix();
   const double scale = in.chance(200) ? 1 : std::pow(10.0, in.uniform(-3, 4));
   Vec3 shift = Vec3::Zero();
-  if (!in.chance(200)) shift = Vec3(in.uniform(-1, 1), in.uniform(-1, 1), in.uniform(-1, 1)) * std::pow(10.0, in.uniform(0, 6));
+  if (!in.chance(200)) {
+    shift = in.vec(-1, 1);
+    shift *= std::pow(10.0, in.uniform(0, 6));
+  }
   auto place = [&](const Vec3& p) -> Vec3 { return scale * (rot * p) + shift; };
   c.V.resize(Eigen::Index(b.P.size()), 3);
   for (size_t i = 0; i < b.P.size(); ++i) c.V.row(Eigen::Index(i)) = place(b.P[i]).transpose();
@@ -286,7 +302,9 @@ inline FuzzCase decode_case(const std::uint8_t* data, std::size_t size) {
   if (in.chance(48) && !c.features.empty()) {
     const int n = in.range(1, 4);
     for (int k = 0; k < n; ++k) {
-      const Vec3 p = c.features[in.below(int(c.features.size()))] + hs * Vec3(in.uniform(-20, 20), in.uniform(-1, 1), in.uniform(-1, 1));
+      const Vec3 on = c.features[in.below(int(c.features.size()))];
+      const double dx = in.uniform(-20, 20), dy = in.uniform(-1, 1), dz = in.uniform(-1, 1);
+      const Vec3 p = on + hs * Vec3(dx, dy, dz);
       o.radius_law.push_back({p, r * in.uniform(0.2, 3)});
     }
     if (in.chance(8)) o.radius_law[0].radius = in.raw_double();
@@ -296,7 +314,7 @@ inline FuzzCase decode_case(const std::uint8_t* data, std::size_t size) {
   const Vec3 lo = c.V.colwise().minCoeff().transpose(), hi = c.V.colwise().maxCoeff().transpose();
   for (int k = 0; k < nseeds; ++k) {
     const int mode = in.below(8);
-    const Vec3 off = Vec3(in.uniform(-1, 1), in.uniform(-1, 1), in.uniform(-1, 1));
+    const Vec3 off = in.vec(-1, 1);
     if (mode < 6 && !c.features.empty()) c.seeds.push_back(c.features[in.below(int(c.features.size()))] + (mode < 4 ? 0.01 : 0.5) * std::min(hs, r) * off);
     else c.seeds.push_back(lo + (hi - lo).cwiseProduct(0.5 * (off + Vec3::Ones())));
   }

@@ -61,7 +61,10 @@ inline double coordinate(ByteReader& in) {
   switch (in.below(8)) {
     case 0: return in.raw_double();
     case 1: return double(int(in.below(5)) - 2);
-    default: return in.below(5) + (in.u8() / 256.0) * (in.chance(128) ? 1 : 1e-9);  // a small lattice: shared edges, folds
+    default: {  // a small lattice: shared edges, folds (reads in sequence, see ByteReader)
+      const double whole = in.below(5), part = in.u8() / 256.0;
+      return whole + part * (in.chance(128) ? 1 : 1e-9);
+    }
   }
 }
 
@@ -77,7 +80,10 @@ inline std::string arrays_case(const std::uint8_t* data, std::size_t size) {
   for (int f = 0; f < m; ++f)
     for (int k = 0; k < 3; ++k) F(f, k) = in.chance(8) ? int(in.u32()) : (n > 0 ? in.below(n) : 0);
   std::vector<Vec3> seeds;
-  for (int k = in.range(0, 2); k > 0; --k) seeds.push_back(Vec3(coordinate(in), coordinate(in), coordinate(in)));
+  for (int k = in.range(0, 2); k > 0; --k) {
+    const double x = coordinate(in), y = coordinate(in), z = coordinate(in);
+    seeds.push_back(Vec3(x, y, z));
+  }
   const double angle = in.chance(200) ? 30 : (in.chance(128) ? in.uniform(0, 180) : in.raw_double());
   const double search = in.chance(128) ? 0 : (in.chance(200) ? in.uniform(0, 10) : in.raw_double());
   const bool round = in.chance(48);
