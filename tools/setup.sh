@@ -15,6 +15,7 @@ PACKAGES=(
   libgtest-dev libbenchmark-dev
   python3-pytest python3-numpy python3-scipy
   xvfb xauth                                    # the GUI tests run FreeCAD under Xvfb
+  clang-14 libfuzzer-14-dev libclang-rt-14-dev  # tools/fuzz.sh: libFuzzer with ASan + UBSan
 )
 missing=()
 for p in "${PACKAGES[@]}"; do

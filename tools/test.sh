@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # The whole test suite: C++ unit tests (GoogleTest via ctest), then the Python tests (engine through
-# Python, FreeCAD headless, the CLI) and the GUI tests (real FreeCAD under Xvfb), all with pytest.
+# Python, FreeCAD headless, the CLI) and the GUI tests (real FreeCAD under Xvfb), all with pytest; then
+# two minutes of fuzzing (tools/fuzz.sh 60).
 # Exits non-zero on any failure.
 set -euo pipefail
 ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
@@ -8,3 +9,5 @@ ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 cd "$ROOT"
 ctest --test-dir build --output-on-failure -j2
 /usr/bin/python3 -m pytest -q -p no:cacheprovider tests
+# A bounded fuzzing pass (tools/fuzz.sh): 60 s on each of the two targets, clang-14 + ASan + UBSan.
+"$ROOT/tools/fuzz.sh" 60

@@ -33,6 +33,9 @@ std::pair<int, int> nearest_sharp_edge(const MeshTopology& mesh, const Vec3& see
     const double d = facet_distance(mesh, f, seed);
     if (d < dstart) dstart = d, start = f;
   }
+  // No facet at a finite distance (coordinates so large that the distances overflow): nothing is near.
+  if (start < 0)
+    throw RoundingError(ErrorCode::NoSharpEdge, "no sharp edge within " + format_number(search_radius) + " mm of the seed " + format_point(seed));
   using Item = std::pair<double, int>;
   std::priority_queue<Item, std::vector<Item>, std::greater<Item>> todo;
   std::unordered_set<int> seen{start};

@@ -8,7 +8,8 @@ import sys
 import pytest
 
 REPO = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
-MOD_DIR = os.path.join(REPO, "Mod", "MeshRound")
+# MESHROUND_MOD_DIR: another copy of the workbench (tools/sanitize.sh: the one with the ASan-built module).
+MOD_DIR = os.environ.get("MESHROUND_MOD_DIR") or os.path.join(REPO, "Mod", "MeshRound")
 FREECAD_LIB = "/usr/lib/freecad-python3/lib"
 for _path in (FREECAD_LIB, os.path.dirname(os.path.abspath(__file__))):
     if _path not in sys.path:

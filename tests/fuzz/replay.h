@@ -1,0 +1,129 @@
+// The two fuzz targets' bodies, shared with their regression tests (tests/cpp/test_fuzz_regressions.cpp):
+// each returns "" when the input is handled as promised (a sound result, or a RoundingError), else the
+// finding. Memory errors and undefined behaviour are the sanitizers' to report.
+#pragma once
+#include <Standard_Failure.hxx>
+#include <cstdio>
+#include <cstdlib>
+#include <string>
+
+#include "fuzz_input.h"
+#include "meshround/chain.h"
+#include "meshround/mesh.h"
+#include "meshround/round.h"
+#include "sound.h"
+
+namespace meshround::fuzz {
+
+inline bool verbose() {
+  static const bool v = std::getenv("MESHROUND_FUZZ_VERBOSE") != nullptr;
+  return v;
+}
+
+// A generated mesh and options (fuzz_input.h) through round_edges; a success must be sound (sound.h)
+// and leave the input arrays as they were.
+inline std::string round_case(const std::uint8_t* data, std::size_t size) {
+  const FuzzCase c = decode_case(data, size);
+  if (c.F.rows() > 6000) return "";  // keep executions fast (the decoder's bounds keep it under this)
+  const Points V0 = c.V;
+  const Triangles F0 = c.F;
+  if (verbose())
+    std::fprintf(stderr, "mesh %ld v %ld f, element %g, seeds %zu, r %g (law %zu), tol %g, angle %g, reach %g\n", long(c.V.rows()),
+                 long(c.F.rows()), c.element, c.seeds.size(), c.options.radius, c.options.radius_law.size(), c.options.tolerance,
+                 c.options.feature_angle_deg, c.options.reach);
+  try {
+    const RoundResult res = round_edges(c.V, c.F, c.seeds, c.options);
+    if (!(c.V.array() == V0.array()).all() && !(c.V.hasNaN() && V0.hasNaN())) return "the input vertices changed";
+    if (!(c.F.array() == F0.array()).all()) return "the input facets changed";
+    SoundnessInput s{c.V, c.F, res.vertices, res.triangles, {}, 0};
+    for (const RoundedChain& ch : res.chains)
+      if (!ch.chain.empty()) s.chain_ends.push_back(ch.chain.front()), s.chain_ends.push_back(ch.chain.back());
+    double rmax = c.options.radius;
+    for (const RadiusControl& rc : c.options.radius_law) rmax = std::max(rmax, rc.radius);
+    s.end_allowance = 1.5 * c.options.reach * rmax;
+    const std::string bad = check_sound(s);
+    if (verbose()) std::fprintf(stderr, "rounded: %ld facets, %s\n", long(res.triangles.rows()), bad.empty() ? "sound" : bad.c_str());
+    if (!bad.empty()) return "unsound result: " + bad;
+  } catch (const RoundingError& e) {
+    if (verbose()) std::fprintf(stderr, "refused (%s): %s\n", error_code_name(e.code), e.what());
+    if (!(c.V.array() == V0.array()).all() && !(c.V.hasNaN() && V0.hasNaN())) return "the input vertices changed";
+  } catch (const Standard_Failure& e) {
+    return std::string("Standard_Failure escaped: ") + e.DynamicType()->Name() + ": " + e.GetMessageString();
+  } catch (const std::exception& e) {
+    return std::string("std::exception escaped: ") + e.what();
+  } catch (...) {
+    return "unknown exception escaped";
+  }
+  return "";
+}
+
+inline double coordinate(ByteReader& in) {
+  switch (in.below(8)) {
+    case 0: return in.raw_double();
+    case 1: return double(int(in.below(5)) - 2);
+    default: {  // a small lattice: shared edges, folds (reads in sequence, see ByteReader)
+      const double whole = in.below(5), part = in.u8() / 256.0;
+      return whole + part * (in.chance(128) ? 1 : 1e-9);
+    }
+  }
+}
+
+// Raw (V, F) -- arbitrary indices, NaN / inf / huge coordinates -- into MeshTopology and its queries,
+// find_chains, collect_base_meshes and, now and then, round_edges.
+inline std::string arrays_case(const std::uint8_t* data, std::size_t size) {
+  ByteReader in(data, size);
+  const int n = in.below(40), m = in.below(60);
+  Points V(n, 3);
+  for (int i = 0; i < n; ++i)
+    for (int k = 0; k < 3; ++k) V(i, k) = coordinate(in);
+  Triangles F(m, 3);
+  for (int f = 0; f < m; ++f)
+    for (int k = 0; k < 3; ++k) F(f, k) = in.chance(8) ? int(in.u32()) : (n > 0 ? in.below(n) : 0);
+  std::vector<Vec3> seeds;
+  for (int k = in.range(0, 2); k > 0; --k) {
+    const double x = coordinate(in), y = coordinate(in), z = coordinate(in);
+    seeds.push_back(Vec3(x, y, z));
+  }
+  const double angle = in.chance(200) ? 30 : (in.chance(128) ? in.uniform(0, 180) : in.raw_double());
+  const double search = in.chance(128) ? 0 : (in.chance(200) ? in.uniform(0, 10) : in.raw_double());
+  const bool round = in.chance(48);
+  try {
+    const MeshTopology mesh(V, F);
+    for (int f = 0; f < mesh.num_facets(); ++f) {
+      (void)mesh.facet_normal(f), (void)mesh.facet_degenerate(f);
+      for (int k = 0; k < 3; ++k) {
+        const int a = F(f, k), b = F(f, (k + 1) % 3);
+        int pair[2];
+        (void)mesh.edge_facet_pair(a, b, pair);
+        (void)mesh.neighbour(f, a, b), (void)mesh.dihedral_deg(a, b), (void)mesh.is_feature_edge(a, b, std::isfinite(angle) ? angle : 30);
+      }
+    }
+    for (int v = 0; v < mesh.num_vertices(); ++v) (void)mesh.vertex_neighbours(v);
+    if (!seeds.empty()) {
+      const std::vector<SharpChain> chains = find_chains(V, F, seeds, angle, search);
+      for (const SharpChain& c : chains) {
+        const BaseMeshes base = collect_base_meshes(mesh, c, std::isfinite(search) && search > 0 ? search : 1.0, std::isfinite(angle) ? angle : 30);
+        (void)base;
+      }
+      if (round) {
+        RoundOptions o;
+        o.radius = in.chance(128) ? in.uniform(0.01, 2) : coordinate(in);
+        o.feature_angle_deg = angle;
+        const Points V0 = V;
+        const Triangles F0 = F;
+        (void)round_edges(V, F, seeds, o);
+        if (!(F.array() == F0.array()).all()) return "the input facets changed";
+      }
+    }
+  } catch (const RoundingError&) {
+  } catch (const Standard_Failure& e) {
+    return std::string("Standard_Failure escaped: ") + e.GetMessageString();
+  } catch (const std::exception& e) {
+    return std::string("std::exception escaped: ") + e.what();
+  } catch (...) {
+    return "unknown exception escaped";
+  }
+  return "";
+}
+
+}  // namespace meshround::fuzz
