@@ -130,6 +130,10 @@ void add_inner_points(std::vector<Vec3>& P, std::vector<Eigen::Vector2d>& Q, std
     return -1;
   };
   std::vector<char> hopeless(tris.size(), 0);
+  // Each triangle's smallest angle, kept up to date (only the triangles a point makes or flips change).
+  auto angle_of = [&](int t) { return smallest_angle(P[tris[t][0]], P[tris[t][1]], P[tris[t][2]]); };
+  std::vector<double> angle(tris.size());
+  for (int t = 0; t < int(tris.size()); ++t) angle[t] = angle_of(t);
   for (size_t added = 0; added < 4 * boundary + 16;) {
     poll_cancel();
     // The largest bad triangle first: its mending point lands deep inside and later ones grade towards
@@ -138,7 +142,7 @@ void add_inner_points(std::vector<Vec3>& P, std::vector<Eigen::Vector2d>& Q, std
     double worst_q = quality, worst_size = 0;
     for (int t = 0; t < int(tris.size()); ++t) {
       if (hopeless[t]) continue;
-      const double q = smallest_angle(P[tris[t][0]], P[tris[t][1]], P[tris[t][2]]);
+      const double q = angle[t];
       if (q >= quality) continue;
       const auto &a = Q[tris[t][0]], &b = Q[tris[t][1]], &c = Q[tris[t][2]];
       const double size = std::max({(b - a).norm(), (c - b).norm(), (a - c).norm()});
@@ -159,13 +163,15 @@ void add_inner_points(std::vector<Vec3>& P, std::vector<Eigen::Vector2d>& Q, std
       tris.push_back({h[2], h[0], k});
       made = {host, int(tris.size()) - 2, int(tris.size()) - 1};
       improve_by_flips(P, Q, tris, &made);
+      const std::vector<double> angle_before = angle;
+      angle.resize(tris.size());
       double made_q = INFINITY;
-      for (int t : made) made_q = std::min(made_q, smallest_angle(P[tris[t][0]], P[tris[t][1]], P[tris[t][2]]));
+      for (int t : made) made_q = std::min(made_q, angle[t] = angle_of(t));
       if (made_q > worst_q + 1e-9) {
         mended = true;
         break;
       }
-      tris = before, P.pop_back(), Q.pop_back();  // it made a triangle as bad: take it back
+      tris = before, angle = angle_before, P.pop_back(), Q.pop_back();  // it made a triangle as bad: take it back
     }
     if (!mended) {
       hopeless[worst] = 1;
