@@ -61,6 +61,15 @@ std::uint64_t region_edge(const MeshTopology& mesh, int f, int code) {
   return edge_key(mesh.F(f, code - 1), mesh.F(f, code % 3));
 }
 
+// A vertex contact (region code 4..6) on an end of one of `edges`: the ball touches that wall there too.
+bool vertex_on(const MeshTopology& mesh, int f, int code, const std::unordered_set<std::uint64_t>& edges) {
+  if (code < 4 || code > 6 || edges.empty()) return false;
+  const int v = mesh.F(f, code - 4);
+  for (int u : mesh.vertex_neighbours(v))
+    if (edges.count(edge_key(v, u))) return true;
+  return false;
+}
+
 }  // namespace
 
 ProfileStation solve_station(const SpineContext& ctx, double s, double r) {
@@ -120,7 +129,7 @@ ProfileStation solve_station(const SpineContext& ctx, double s, double r) {
   for (int k = 0; k < 2; ++k) {
     st.region[k] = region_kind(code[k]);
     const std::uint64_t wall = region_edge(ctx.mesh, facet[k], code[k]);
-    if (!at_end && ctx.base.walls[k].count(wall))
+    if (!at_end && (ctx.base.walls[k].count(wall) || vertex_on(ctx.mesh, facet[k], code[k], ctx.base.walls[k])))
       throw RoundingError(ErrorCode::RadiusTooLarge, "radius " + format_number(r) + " is too large at " + format_point(e) +
                           ": the ball would reach past the next sharp edge or the mesh boundary at " +
                           format_point(st.contact[k]));
@@ -128,7 +137,8 @@ ProfileStation solve_station(const SpineContext& ctx, double s, double r) {
     // or CAD facet runs past the reach): the band would not fit in what was collected.
     double from_chain = 0;
     ctx.chain.project(st.contact[k], &from_chain);
-    if (ctx.base.reach_limit[k].count(wall) || from_chain > ctx.base.reach_distance)
+    if (ctx.base.reach_limit[k].count(wall) || vertex_on(ctx.mesh, facet[k], code[k], ctx.base.reach_limit[k]) ||
+        from_chain > ctx.base.reach_distance)
       throw RoundingError(ErrorCode::BeyondReach, "the ball at " + format_point(e) + " touches the base mesh beyond the reach; "
                           "increase the reach factor");
   }
