@@ -287,7 +287,13 @@ TrimLines trim_base_meshes(const MeshTopology& mesh, const SharpChain& chain, co
     auto cut_point = [&](int a, int b) -> int {
       const std::uint64_t key = edge_key(a, b);
       auto it = edit.edge_point.find(key);
-      if (it != edit.edge_point.end()) return it->second;
+      if (it != edit.edge_point.end()) {
+        if (!cut_u.count(it->second))  // the other side's trim line cut this edge already
+          throw RoundingError(ErrorCode::ResultInvalid, "both contact lines cut the mesh edge at " +
+                              format_point(0.5 * (edit.point(a) + edit.point(b))) +
+                              ": the band is narrower than the facets there; try a larger radius or a finer mesh");
+        return it->second;
+      }
       if (vs[a].d > 0) std::swap(a, b);  // a inside, b outside
       const Vec3 pa = edit.point(a), pb = edit.point(b);
       double t0 = 0, t1 = 1, f0 = exact(a).d, f1 = exact(b).d, u = vs[a].u, t = 0.5;
