@@ -81,21 +81,48 @@ bool thin_facet(const MeshTopology& mesh, int v, int u, int x, double fold) {
   return false;
 }
 
+// How many open edges from a chain stopped by the boundary are followed to see whether the sharp edge
+// resumes beyond (a hole of a few facets beside it).
+constexpr int kHoleSteps = 12;
+
 // One step along the chain from `prev` -> `v`: the next vertex, or -1 with the reason it ends.
 int next_chain_vertex(const MeshTopology& mesh, int prev, int v, double feature_angle_deg, double fold,
                       ChainEnd* end) {
   std::vector<int> ahead;
+  bool boundary = false;
   for (int w : mesh.vertex_neighbours(v)) {
     const int nf = mesh.edge_facet_count(v, w);
-    if (nf == 1) return *end = ChainEnd::Boundary, -1;
     if (nf > 2) return *end = ChainEnd::Junction, -1;
+    boundary |= nf == 1;
     if (w != prev && mesh.is_feature_edge(v, w, feature_angle_deg)) ahead.push_back(w);
   }
-  if (ahead.empty()) return *end = ChainEnd::Fade, -1;
   const Vec3 d0 = (mesh.point(v) - mesh.point(prev)).normalized();
   auto turn_deg = [&](int w) {
     return std::acos(std::clamp(d0.dot((mesh.point(w) - mesh.point(v)).normalized()), -1.0, 1.0)) * 180 / M_PI;
   };
+  if (boundary) {
+    // The mesh's own edge ends the chain; but where the sharp edge resumes ahead on the same open
+    // boundary, a few edges along it, the boundary is a hole beside (or across) the chain, and the round
+    // would stop at it half made. (A flange that ends, or a rim, has no sharp edge running on ahead.)
+    const double cos_turn = std::cos(feature_angle_deg * M_PI / 180);
+    std::vector<int> todo{v};
+    std::unordered_map<int, int> hops{{v, 0}};
+    while (!todo.empty()) {
+      const int u = todo.back();
+      todo.pop_back();
+      for (int x : mesh.vertex_neighbours(u)) {
+        const int nf = mesh.edge_facet_count(u, x);
+        const Vec3 d = mesh.point(x) - mesh.point(u);
+        if (nf == 2 && d0.dot(mesh.point(u) - mesh.point(v)) >= 0 && (u != v || x != prev) && d0.dot(d.normalized()) > cos_turn &&
+            mesh.is_feature_edge(u, x, feature_angle_deg))
+          throw RoundingError(ErrorCode::NonManifoldInput, "the mesh is open next to the chain at " + format_point(mesh.point(v)) +
+                              " (a hole beside the sharp edge, which runs on past it); fill the hole first");
+        if (nf == 1 && hops[u] < kHoleSteps && hops.try_emplace(x, hops[u] + 1).second) todo.push_back(x);
+      }
+    }
+    return *end = ChainEnd::Boundary, -1;
+  }
+  if (ahead.empty()) return *end = ChainEnd::Fade, -1;
   // Other sharp edges make a junction, unless they only run across a thin facet on the chain (the fold
   // is spread over that facet: no new edge starts there). Of the continuations that leave no
   // such edge, the straightest.

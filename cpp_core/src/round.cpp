@@ -133,15 +133,25 @@ std::vector<ProfileStation> sample_profiles(const SpineContext& ctx, const Radiu
   return st;
 }
 
-// The rounding rebuilds the base meshes, so they must be 2-manifold: refuse (naming the place) an edge
-// shared by more than two facets. (Degenerate facets are refused while the base meshes are collected.)
+// The rounding rebuilds the base meshes, so they must be 2-manifold and consistently oriented: refuse
+// (naming the place) an edge shared by more than two facets, or two facets that run their shared edge
+// the same way (one of them is flipped: the pieces cut from it would face against the round).
+// (Degenerate facets are refused while the base meshes are collected.)
 void check_base_meshes(const MeshTopology& mesh, const BaseMeshes& base) {
   for (int side = 0; side < 2; ++side)
     for (int f : base.facets[side])
-      for (int k = 0; k < 3; ++k)
-        if (mesh.edge_facet_count(mesh.F(f, k), mesh.F(f, (k + 1) % 3)) > 2)
-          throw RoundingError(ErrorCode::NonManifoldInput, "the edge at " + format_point(0.5 * (mesh.corner(f, k) + mesh.corner(f, (k + 1) % 3))) +
+      for (int k = 0; k < 3; ++k) {
+        const int a = mesh.F(f, k), b = mesh.F(f, (k + 1) % 3);
+        int pair[2];
+        const int count = mesh.edge_facet_pair(a, b, pair);
+        const Vec3 mid = 0.5 * (mesh.point(a) + mesh.point(b));
+        if (count > 2)
+          throw RoundingError(ErrorCode::NonManifoldInput, "the edge at " + format_point(mid) +
                               " near the chain is non-manifold (more than two facets share it); repair the mesh there first");
+        if (count == 2 && mesh.edge_direction(pair[0], a, b) == mesh.edge_direction(pair[1], a, b))
+          throw RoundingError(ErrorCode::NonManifoldInput, "the facets at " + format_point(mid) + " near the chain are oriented against each other "
+                              "(a flipped facet); repair the mesh there first");
+      }
 }
 
 double smallest_angle_deg(const Vec3& a, const Vec3& b, const Vec3& c) { return smallest_angle(a, b, c) * 180 / M_PI; }

@@ -1,0 +1,148 @@
+"""Never a broken mesh: inputs that used to give a broken result (open, non-manifold, mis-oriented,
+degenerate or self-intersecting) are refused with the right code and the input untouched, or rounded to
+a sound mesh. Behind them the engine's output guard refuses anything unsound with result_invalid.
+
+  * a radius too large for the face beside the edge: on the grid mesh the ball touches the next sharp
+    edge at a vertex, which the wall test used to miss;
+  * a huge radius on the S-rail die;
+  * a few facets missing beside the chain, or a couple of mm from it inside the band;
+  * a flipped facet beside the chain.
+"""
+import numpy as np
+import pytest
+
+import cases  # first: it puts FreeCAD's modules on the path
+import MeshPart
+import MeshRound
+import Part
+import die_meshes
+import soundness
+from MeshRound import api, meshconv
+from conftest import BOX_SEED, BOX_SIZE
+
+RADIUS = 5.0
+
+
+def grid_box(h=2.0):
+    """The 100 x 60 x 40 box, each face a regular grid of h x h squares, two triangles each."""
+    points, index, facets = [], {}, []
+
+    def vid(p):
+        key = tuple(int(round(c * 1e6)) for c in p)
+        if key not in index:
+            index[key] = len(points)
+            points.append(p)
+        return index[key]
+
+    for axis in range(3):
+        for side in range(2):
+            a, b = (axis + 1) % 3, (axis + 2) % 3
+            na, nb = int(round(BOX_SIZE[a] / h)), int(round(BOX_SIZE[b] / h))
+            for i in range(na):
+                for j in range(nb):
+                    q = []
+                    for c in range(4):
+                        p = [0.0, 0.0, 0.0]
+                        p[axis] = side * BOX_SIZE[axis]
+                        p[a] = BOX_SIZE[a] * (i + (c in (1, 2))) / na
+                        p[b] = BOX_SIZE[b] * (j + (c >= 2)) / nb
+                        q.append(vid(tuple(p)))
+                    if side:
+                        q[1], q[3] = q[3], q[1]
+                    facets += [(q[0], q[1], q[2]), (q[0], q[2], q[3])]
+    return np.array(points, dtype=float), np.array(facets, dtype=np.int64)
+
+
+def cad_box():
+    return meshconv.mesh_to_arrays(MeshPart.meshFromShape(Shape=Part.makeBox(*BOX_SIZE), MaxLength=2))
+
+
+@pytest.fixture(scope="module", params=["grid", "cad"])
+def box_arrays(request):
+    return grid_box() if request.param == "grid" else cad_box()
+
+
+def assert_sound(V0, F0, result):
+    """The result's topology is the input's (tests/python/soundness.py)."""
+    assert soundness.problems(V0, F0, result.vertices, result.triangles) == []
+
+
+def assert_refused(V, F, seed, radius, code, message=None):
+    V_before, F_before = V.copy(), F.copy()
+    with pytest.raises(MeshRound.RoundingError, match=message) as error:
+        api.round_arrays(V, F, seed, radius)
+    assert error.value.code == code, str(error.value)
+    assert np.array_equal(V, V_before) and np.array_equal(F, F_before)
+    return str(error.value)
+
+
+# ---------------------------------------------------------------- 1. a radius too large for the face
+@pytest.mark.parametrize("radius", [41.0, 40.5])
+def test_a_radius_larger_than_the_face_beside_the_edge_is_refused(box_arrays, radius):
+    # The back face is 40 high: the ball touches its bottom edge (at a vertex, on the grid).
+    V, F = box_arrays
+    message = assert_refused(V, F, BOX_SEED, radius, "radius_too_large",
+                             r"would reach past the next sharp edge or the mesh boundary at \(.*\)")
+    assert "radius " + f"{radius:g}" in message
+
+
+def test_a_radius_just_under_the_face_rounds_soundly(box_arrays):
+    V, F = box_arrays
+    result = api.round_arrays(V, F, BOX_SEED, 39.5)
+    assert result.report["facets_added"] > 0
+    assert_sound(V, F, result)
+
+
+# ---------------------------------------------------------------------- 2. a huge radius on the die
+def test_a_huge_radius_on_the_die_is_refused():
+    V, F, seeds = die_meshes.die_arrays(1)
+    for seed in (seeds[0], seeds):
+        assert_refused(V, F, seed, 1e5, "radius_too_large", r"radius 100000 is too large at \(")
+
+
+# ------------------------------------------------------------------- 3. facets missing near the chain
+def without_facets_near(V, F, point, count):
+    centroids = V[F].mean(axis=1)
+    drop = np.argsort(np.linalg.norm(centroids - np.array(point), axis=1))[:count]
+    return F[np.setdiff1d(np.arange(len(F)), drop)]
+
+
+@pytest.mark.parametrize("count", [1, 2, 3])
+@pytest.mark.parametrize("where", [(50.0, 59.5, 40.0), (50.0, 60.0, 39.5)], ids=["top", "back"])
+def test_a_hole_beside_the_chain_is_refused_or_rounded_soundly(box_arrays, where, count):
+    V, F = box_arrays
+    F = without_facets_near(V, F, where, count)
+    try:
+        result = api.round_arrays(V, F, BOX_SEED, RADIUS)
+    except MeshRound.RoundingError as error:
+        assert error.code == "non_manifold_input", str(error)
+        assert "open next to the chain at (50, 60, 40)" in str(error)
+    else:
+        assert_sound(V, F, result)  # the hole lay inside the round and went with it
+
+
+@pytest.mark.parametrize("count", [1, 2, 3])
+@pytest.mark.parametrize("where", [(50.0, 57.0, 40.0), (50.0, 60.0, 36.0), (50.0, 52.0, 40.0)],
+                         ids=["top-3mm", "back-4mm", "top-8mm"])
+def test_a_hole_inside_the_band_is_refused_or_rounded_soundly(box_arrays, where, count):
+    V, F = box_arrays
+    F = without_facets_near(V, F, where, count)
+    try:
+        result = api.round_arrays(V, F, BOX_SEED, RADIUS)
+    except MeshRound.RoundingError as error:
+        # The ball would touch the hole's edge: the face beside the chain is too short there.
+        assert error.code == "radius_too_large" and "mesh boundary at (" in str(error), str(error)
+    else:
+        assert_sound(V, F, result)
+
+
+# ------------------------------------------------------------------------------- 5. a flipped facet
+@pytest.mark.parametrize("where", [(50.0, 59.5, 40.0), (50.0, 60.0, 39.5), (50.0, 57.0, 40.0), (50.0, 55.2, 40.0),
+                                   (50.0, 60.0, 35.1), (50.0, 52.0, 40.0)],
+                         ids=["top-beside", "back-beside", "top-3mm", "top-cut", "back-cut", "top-8mm"])
+def test_a_flipped_facet_near_the_chain_is_refused(box_arrays, where):
+    V, F = box_arrays
+    F = F.copy()
+    f = int(np.argmin(np.linalg.norm(V[F].mean(axis=1) - np.array(where), axis=1)))
+    F[f] = F[f][[0, 2, 1]]
+    assert_refused(V, F, BOX_SEED, RADIUS, "non_manifold_input", r"near the chain are oriented against each other \(a flipped facet\)")
