@@ -146,7 +146,7 @@ def test_a_failed_recompute_shows_in_the_report_view(observed):
     failed = observed["failed"]
     assert "Invalid" in failed["state"] and "Invalid" not in failed["base_state"]
     assert "RoundingError" in failed["report_view"] and "radius must be" in failed["report_view"]
-    assert "failed to recompute: radius must be" in observed["failed_edit_status"]  # and in its panel
+    assert "failed to recompute: the radius must be" in observed["failed_edit_status"]  # and in its panel
     assert observed["failed_edit_cancelled"]
 
 
