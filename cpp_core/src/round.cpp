@@ -5,6 +5,7 @@
 #include <cmath>
 #include <set>
 
+#include "ends.h"
 #include "guard.h"
 #include "meshround/cancel.h"
 #include "meshround/radius_law.h"
@@ -96,16 +97,18 @@ ProfileStation station(const SpineContext& ctx, const RadiusLaw& law, double s) 
 // Profiles along the chain: uniform to start with, then wherever the loft strays from the exact ball.
 // Each station is at least two facets of the round (a quad between it and the next): stations count
 // against the work budget as two facets, checked before they are solved.
+// An open chain's balls are solved on [s_lo, s_hi] (short of a capped end whose face leans over the
+// round, see ends.h); a loop's on all of it.
 std::vector<ProfileStation> sample_profiles(const SpineContext& ctx, const RadiusLaw& law, double tolerance, long max_new_facets,
-                                            RoundingSurface& surface, double* loft_deviation) {
+                                            double s_lo, double s_hi, RoundingSurface& surface, double* loft_deviation) {
   const SharpChain& chain = ctx.chain;
-  const double L = chain.length;
-  const double planned = std::ceil(L / (0.5 * law.min_radius())) + 1;
+  const double L = chain.length, span = s_hi - s_lo;
+  const double planned = std::ceil(span / (0.5 * law.min_radius())) + 1;
   check_work_budget(2 * planned, max_new_facets, "profile stations");
   const int n0 = std::max(chain.closed ? 6 : 4, int(planned));
   std::vector<ProfileStation> st;
   for (int i = 0; i < n0; ++i) {
-    const double s = chain.closed ? L * i / n0 : L * i / (n0 - 1);
+    const double s = chain.closed ? L * i / n0 : s_lo + span * i / (n0 - 1);
     st.push_back(station(ctx, law, s));
   }
   // Stations closer than a quarter radius are not resolved further: where a coarse mesh's crease makes
@@ -130,6 +133,43 @@ std::vector<ProfileStation> sample_profiles(const SpineContext& ctx, const Radiu
     st.insert(st.end(), extra.begin(), extra.end());
     std::sort(st.begin(), st.end(), [](const ProfileStation& x, const ProfileStation& y) { return x.s < y.s; });
   }
+  return st;
+}
+
+// The profiles of a chain's round, its capped ends cut by their end faces (ends.h): where an end face
+// leans over the round, the balls stop short of it (their setback) and the last one is carried on along
+// the chain to the face; every capped end's profile is then moved onto its face's plane.
+std::vector<ProfileStation> end_cut_profiles(const SpineContext& ctx, const RadiusLaw& law, double tolerance, long max_new_facets,
+                                             RoundingSurface& surface, double* loft_deviation) {
+  const SharpChain& chain = ctx.chain;
+  const double L = chain.length;
+  EndCut cut[2];
+  double setback[2] = {0, 0};
+  for (int end = 0; end < 2 && !chain.closed; ++end) {
+    cut[end] = end_face_cut(ctx.mesh, chain, ctx.base, end == 0);
+    if (!cut[end].active) continue;
+    // Measured on a ball clear of the end face (the one at the end may already lean on it).
+    const double to_end = std::min(2 * law.max_radius(), 0.25 * L);
+    setback[end] = end_cut_setback(station(ctx, law, end ? L - to_end : to_end), to_end, cut[end]);
+  }
+  if (setback[0] + setback[1] > 0.5 * L)
+    throw RoundingError(ErrorCode::CornerNotBlendable, "the chain through " + format_point(chain.point_at(0.5 * L)) + " is too short for its round to "
+                        "run on to the end faces leaning over it (" + format_number(setback[0] + setback[1]) + " mm of its " +
+                        format_number(L) + " mm); try a smaller radius");
+  std::vector<ProfileStation> st = sample_profiles(ctx, law, tolerance, max_new_facets, setback[0], L - setback[1], surface, loft_deviation);
+  if (!cut[0].active && !cut[1].active) return st;
+  for (int end = 0; end < 2; ++end) {
+    if (!cut[end].active) continue;
+    ProfileStation last = end ? st.back() : st.front();
+    const Vec3 shift = setback[end] * cut[end].along;
+    last.centre += shift, last.contact[0] += shift, last.contact[1] += shift;
+    last.s = end ? L : 0.0;
+    last.cut = cut[end];
+    if (setback[end] == 0) (end ? st.back() : st.front()) = last;
+    else if (end) st.push_back(last);
+    else st.insert(st.begin(), last);
+  }
+  surface = loft_profiles(st, false, L);
   return st;
 }
 
@@ -162,8 +202,9 @@ double smallest_angle_deg(const Vec3& a, const Vec3& b, const Vec3& c) { return 
 constexpr double kThinDeg = 10;
 constexpr double kWiderReaches[] = {1.25, 1.5, 2, 3};
 
+// `split`: the mesh is the input already split along the chain's end segments (ends.h).
 RoundedChain round_one_chain(const MeshTopology& mesh, const Vec3& seed, const RoundOptions& opt, RoundReport& report,
-                             Points& V_out, Triangles& F_out, bool is_probe = false) {
+                             Points& V_out, Triangles& F_out, bool is_probe = false, bool split = false) {
   PassTimer timer(report);
   const double r_max = opt.max_radius();
   SharpChain chain = trace_chain(mesh, seed, opt.feature_angle_deg, opt.reach * r_max);
@@ -179,8 +220,17 @@ RoundedChain round_one_chain(const MeshTopology& mesh, const Vec3& seed, const R
   const SpineContext ctx{mesh, chain, base, {&dist_a, &dist_b}};
   RoundingSurface surface;
   RoundedChain out;
-  const std::vector<ProfileStation> stations = sample_profiles(ctx, law, tol, opt.max_new_facets, surface, &out.report.surface_deviation);
+  const std::vector<ProfileStation> stations = end_cut_profiles(ctx, law, tol, opt.max_new_facets, surface, &out.report.surface_deviation);
   timer.done("surface");
+  if (!split) {  // a base mesh going on past an end face's plane: split along the band's corner, round that
+    Points V_split;
+    Triangles F_split;
+    if (split_along_end_segments(mesh, end_segments(mesh, chain, base, stations, surface), V_split, F_split)) {
+      const MeshTopology split_mesh(V_split, F_split);
+      timer.done("ends");
+      return round_one_chain(split_mesh, seed, opt, report, V_out, F_out, is_probe, true);
+    }
+  }
 
   MeshEdit edit(mesh);
   edit.max_new_facets = opt.max_new_facets;
@@ -266,7 +316,7 @@ RoundedChain round_one_chain(const MeshTopology& mesh, const Vec3& seed, const R
       Points V;
       Triangles F;
       try {
-        const RoundedChain probe = round_one_chain(mesh, seed, o, scratch, V, F, true);
+        const RoundedChain probe = round_one_chain(mesh, seed, o, scratch, V, F, true, split);
         if (probe.report.thin_facets > 0) continue;
       } catch (const RoundingError& e) {
         if (e.code == ErrorCode::Cancelled) throw;

@@ -66,6 +66,8 @@ void profile_arc(const ProfileStation& st, Vec3 poles[3], double weights[3]) {
   poles[1] = st.centre + (a + b).normalized() * (st.radius / std::cos(half));
   weights[0] = weights[2] = 1.0;
   weights[1] = std::cos(half);
+  if (st.cut.active)
+    for (int k = 0; k < 3; ++k) poles[k] = st.cut.onto(poles[k]);
 }
 
 RoundingSurface loft_profiles(const std::vector<ProfileStation>& stations, bool closed, double period) {

@@ -104,9 +104,10 @@ double profile_step(const RoundingSurface& surface, const std::vector<ProfileSta
 RoundMeshStats mesh_rounding_surface(const RoundingSurface& surface, const std::vector<ProfileStation>& stations,
                                      const TrimLines& trim, double tolerance, MeshEdit& edit) {
   const int nv = profile_segments(stations, tolerance);
-  const ProfileStation* widest = &stations.front();
+  // (A capped end's profile is moved onto its end face: the surface there is not the ball's section.)
+  const ProfileStation* widest = nullptr;
   for (const ProfileStation& st : stations)
-    if (st.angle() > widest->angle()) widest = &st;
+    if (!st.cut.active && (!widest || st.angle() > widest->angle())) widest = &st;
   std::vector<double> levels(nv + 1);
   for (int j = 0; j <= nv; ++j) levels[j] = j == 0 ? 0.0 : j == nv ? 1.0 : v_at_angle_fraction(surface, *widest, double(j) / nv);
   // Steps along the round between 0.4 and 2.5 times the local step across it: facets keep their shape

@@ -123,7 +123,11 @@ void remove_cap_corner(const MeshTopology& mesh, const BaseMeshes& base, int cor
   // R: the corner of the end face between the two faces' traces and the arc. `closed` admits its
   // boundary too (but not the contacts themselves, which the round keeps), and a rim a tenth of r
   // inside the arc: a vertex that near the arc would only leave slivers between itself and the arc.
-  auto in_corner_region = [&](const Vec3& p, bool closed) {
+  // At an end cut by its end face (st.cut) the region lies in the face's plane: a point there is taken
+  // back along the chain onto the ball's section, where the region is the circle's.
+  auto in_corner_region = [&](const Vec3& q, bool closed) {
+    if (st.cut.active && std::abs(st.cut.past(q)) > 1e-3 * r) return false;
+    const Vec3 p = st.cut.active ? Vec3(q - st.cut.along * (q - st.centre).dot(st.cut.along)) : q;
     const Vec3 d = p - st.centre;
     if (std::abs(d.dot(plane_normal)) > 1e-3 * r) return false;
     const Eigen::Vector2d ab = gram_inv * (basis.transpose() * d);
@@ -186,6 +190,22 @@ TrimLines trim_base_meshes(const MeshTopology& mesh, const SharpChain& chain, co
       nearest[k] = std::min(nearest[k], d), farthest[k] = std::max(farthest[k], d);
     }
   const std::unordered_set<int> chain_vertices(chain.vertices.begin(), chain.vertices.end());
+  // Capped ends cut by their end face (ends.h): there the band stops at the face's plane. `plane_slack`:
+  // "on" that plane, for float32 coordinates.
+  const EndCut* cuts[2] = {nullptr, nullptr};
+  double plane_slack = 0;
+  for (int end = 0; end < 2 && !chain.closed; ++end) {
+    const ProfileStation& st = end ? end_profiles.back() : end_profiles.front();
+    if (!st.cut.active) continue;
+    cuts[end] = &st.cut;
+    plane_slack = std::max(plane_slack, on_plane_slack(st.radius, st.cut.point.cwiseAbs().maxCoeff()));
+  }
+  auto past_end = [&](const Vec3& p) {
+    double past = -INFINITY;
+    for (const EndCut* c : cuts)
+      if (c) past = std::max(past, c->past(p));
+    return past;
+  };
   std::unordered_map<std::uint64_t, KeptPiece> kept_piece;  // edge_key(trim_end, kept_end) -> the piece
   // The points on a kept piece, when a polygon runs along it from `from` to `to`.
   auto add_piece_points = [&](int from, int to, std::vector<int>& polygon) {
@@ -196,7 +216,15 @@ TrimLines trim_base_meshes(const MeshTopology& mesh, const SharpChain& chain, co
     else polygon.insert(polygon.end(), points.rbegin(), points.rend());
   };
   for (int side = 0; side < 2; ++side) {
-    const ContactLineDistance distance{surface, chain, side};
+    const ContactLineDistance line_distance{surface, chain, side};
+    // The band's edge: the contact line, and past a capped end its end face's plane. A point on the plane
+    // is measured from the line alone, so that an edge lying in the plane is cut where the line crosses it.
+    auto distance = [&](const Vec3& p, double u_hint, double* u_out, Vec3* away = nullptr) {
+      const double d = line_distance(p, u_hint, u_out, away);
+      const double past = past_end(p);
+      return past > plane_slack ? std::max(d, past) : d;
+    };
+    std::unordered_set<int> plane_points;  // trim points on an end face's plane, not on the contact line
     std::unordered_map<int, VertexSide> vs;
     std::unordered_map<int, double> cut_u;  // cut point -> its line parameter
     auto exact = [&](int v) -> VertexSide& {  // a vertex's true distance, when a cut needs it
@@ -217,12 +245,19 @@ TrimLines trim_base_meshes(const MeshTopology& mesh, const SharpChain& chain, co
         Vec3 away;
         const ChainProjection& near = base.projection.at(v);
         const double from_chain = near.distance, s_chain = near.s;
-        if (from_chain > 1.3 * farthest[side] || from_chain < 0.7 * nearest[side]) {  // clearly out / in
+        const double past = past_end(mesh.point(v));
+        if (past > plane_slack) {  // past a capped end's face: outside the band
+          vs[v] = {kFar, s_chain, false};
+          continue;
+        }
+        const bool on_end_plane = past >= -plane_slack;
+        if (!on_end_plane && (from_chain > 1.3 * farthest[side] || from_chain < 0.7 * nearest[side])) {  // clearly out / in
           vs[v] = {from_chain < 0.7 * nearest[side] ? -kFar : kFar, s_chain, false};
           continue;
         }
         s.exact = true;
         s.d = distance(mesh.point(v), s_chain, &s.u, &away);
+        if (on_end_plane && std::abs(s.d) <= plane_slack) s.d = 0;  // the band's corner (ends.h: a vertex)
         if (chain_vertices.count(v)) s.d = std::min(s.d, -1e-9);  // the chain is inside the band by definition
         // A vertex very near the line moves onto it (when that does not change the surface): no slivers.
         // Near means within a fifth of its shortest edge; or within kNearShaped of it when its facets
@@ -230,7 +265,7 @@ TrimLines trim_base_meshes(const MeshTopology& mesh, const SharpChain& chain, co
         // slivers between itself and the line); or, for a vertex on an end face's edge, within 0.4 of the
         // line's spacing when its facets keep their shape (it would leave a sliver between the arc and
         // itself in the end face).
-        else if (std::abs(s.d) > 0 && !edit.moved.count(v)) {
+        else if (std::abs(s.d) > 0 && !edit.moved.count(v) && !on_end_plane) {
           double shortest = INFINITY;
           for (int w : mesh.vertex_neighbours(v))  // (facets on the chain go with the band: their shape is moot)
             if (!chain_vertices.count(w)) shortest = std::min(shortest, (mesh.point(w) - mesh.point(v)).norm());
@@ -238,7 +273,7 @@ TrimLines trim_base_meshes(const MeshTopology& mesh, const SharpChain& chain, co
           Vec3 q;
           bool on_crease = false;
           if (std::abs(s.d) < std::max(near_edges, near_line) &&
-              snap_target(mesh, v, distance, s.d, s.u, away, 0.02 * opt.tolerance, &q, &on_crease)) {
+              snap_target(mesh, v, line_distance, s.d, s.u, away, 0.02 * opt.tolerance, &q, &on_crease)) {
             const double move = (q - mesh.point(v)).norm();
             if (move < near_edges || ((on_crease ? move < near_line : move < kNearShaped * shortest) &&
                                       snap_keeps_shape(mesh, edit, v, q))) {
@@ -296,6 +331,12 @@ TrimLines trim_base_meshes(const MeshTopology& mesh, const SharpChain& chain, co
       }
       if (vs[a].d > 0) std::swap(a, b);  // a inside, b outside
       const Vec3 pa = edit.point(a), pb = edit.point(b);
+      // A vertex in the band on a capped end's plane, the other end past the plane: the plane's trace
+      // runs through the vertex itself.
+      if (std::abs(past_end(pa)) <= plane_slack && past_end(pb) > plane_slack) {
+        plane_points.insert(a);
+        return a;
+      }
       double t0 = 0, t1 = 1, f0 = exact(a).d, f1 = exact(b).d, u = vs[a].u, t = 0.5;
       int side_kept = 0;
       for (int it2 = 0; it2 < 60; ++it2) {  // Illinois regula falsi
@@ -312,10 +353,18 @@ TrimLines trim_base_meshes(const MeshTopology& mesh, const SharpChain& chain, co
           side_kept = 1;
         }
       }
+      // Cut on an end face's plane (the contact line is farther on): put onto the plane exactly.
+      double u_line = u;
+      const bool on_plane = line_distance(pa + t * (pb - pa), u, &u_line) < -plane_slack && past_end(pb) > plane_slack;
+      if (on_plane) {
+        const double fa = past_end(pa), fb = past_end(pb);
+        t = std::clamp(fa / (fa - fb), 0.0, 1.0);
+      }
       const int id = edit.add_point(pa + t * (pb - pa));
       edit.edge_point[key] = id;
       cut_u[id] = u;
-      out.line[side].push_back({id, u});
+      if (on_plane) plane_points.insert(id);
+      else out.line[side].push_back({id, u});
       grade_piece(id, b, u);
       return id;
     };
@@ -367,8 +416,16 @@ TrimLines trim_base_meshes(const MeshTopology& mesh, const SharpChain& chain, co
         else skipped = true;
         if ((vs[a].d < 0 && vs[b].d > 0) || (vs[a].d > 0 && vs[b].d < 0)) {
           const int x = cut_point(a, b);
-          ring.push_back({x, cut_u.at(x), true}), band_before.push_back(skipped), skipped = false;
+          if (!ring.empty() && ring.back().vertex == x) continue;  // a band vertex on an end face's plane, again
+          ring.push_back({x, cut_u.count(x) ? cut_u.at(x) : vs[x].u, true}), band_before.push_back(skipped), skipped = false;
         }
+      }
+      if (ring.size() > 1 && ring.back().vertex == ring.front().vertex) ring.pop_back(), band_before.pop_back(), band_before[0] = true;
+      // Only the band vertex on an end face's plane was cut off: the facet stays as it is.
+      if (ring.size() == 3 && std::all_of(ring.begin(), ring.end(), [&](const Item& x) { return x.vertex < mesh.num_vertices(); })) {
+        edit.removed.erase(f);
+        --out.facets_cut;
+        continue;
       }
       if (skipped && !band_before.empty()) band_before[0] = true;
       const Vec3 n = mesh.facet_normal(f), p0 = mesh.corner(f, 0);
@@ -376,7 +433,8 @@ TrimLines trim_base_meshes(const MeshTopology& mesh, const SharpChain& chain, co
       for (size_t i = 0; i < ring.size(); ++i) {
         const Item& prev = ring[(i + ring.size() - 1) % ring.size()];
         if (!band_before[i]) add_piece_points(prev.vertex, ring[i].vertex, polygon);
-        if (band_before[i] && prev.trim && ring[i].trim) {
+        // (A piece on an end face's plane is straight: it needs no points.)
+        if (band_before[i] && prev.trim && ring[i].trim && !plane_points.count(prev.vertex) && !plane_points.count(ring[i].vertex)) {
           // Extra points where the contact line bends or runs long inside this facet.
           const Vec3 x1 = edit.point(prev.vertex), x2 = edit.point(ring[i].vertex);
           const double du = wrapped_delta(surface, prev.u, ring[i].u);

@@ -1,6 +1,7 @@
 // The engine against OCCT's own fillet of the CAD solid that was meshed (BRepFilletAPI_MakeFillet).
 #include <BRepBuilderAPI_MakePolygon.hxx>
 #include <BRepBuilderAPI_MakeFace.hxx>
+#include <BRepAlgoAPI_Cut.hxx>
 #include <BRepPrimAPI_MakeBox.hxx>
 #include <BRepPrimAPI_MakePrism.hxx>
 #include <gtest/gtest.h>
@@ -35,6 +36,16 @@ Case lchannel_inner_edge() {
   return {"lchannel", solid,
           [](const Vec3& p, const Vec3& q) { return std::abs(p.y() - 10) + std::abs(q.y() - 10) + std::abs(p.z() - 10) + std::abs(q.z() - 10) < 1e-9; },
           Vec3(37, 10, 10), 4.0};
+}
+
+// A rim edge of a rectangular pocket: at both ends it runs into the next wall, and the top face goes on
+// around the corner (the round stops at the wall's plane, its end capped in that plane).
+Case pocket_rim_edge() {
+  const TopoDS_Shape block = BRepPrimAPI_MakeBox(80, 60, 30).Shape();
+  const TopoDS_Shape pocket = BRepPrimAPI_MakeBox(gp_Pnt(20, 15, 18), gp_Pnt(60, 45, 31)).Shape();
+  return {"pocket rim edge", BRepAlgoAPI_Cut(block, pocket).Shape(),
+          [](const Vec3& p, const Vec3& q) { return std::abs(p.y() - 15) + std::abs(q.y() - 15) + std::abs(p.z() - 30) + std::abs(q.z() - 30) < 1e-9; },
+          Vec3(37, 15, 30), 2.0};
 }
 
 struct Measured {
@@ -142,4 +153,8 @@ TEST(BadInput, ClearErrorsNamingTheCause) {
   nan(0, 0) = NAN;
   EXPECT_NE(message(nan, in.F, c.seed, opt).find("NaN"), std::string::npos);
   EXPECT_NE(message(Points(0, 3), Triangles(0, 3), c.seed, opt).find("empty"), std::string::npos);
+}
+
+TEST(Rounding, RimEdgeIntoPocketWallMatchesOcctFillet) {
+  for (double element : {0.4, 2.5}) expect_exact_and_clean(pocket_rim_edge(), element);
 }

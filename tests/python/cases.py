@@ -117,6 +117,37 @@ def pocket_rim():
     return s, edges_where(s, lambda p: abs(p.z - 20) < TOL and abs(math.hypot(p.x - 31, p.y - 31) - POCKET_R) < 1e-6)
 
 
+def pocket_block(draft_deg=0.0):
+    """A 80 x 60 x 30 block with a 40 x 30, 12 deep rectangular pocket, its walls drafted by draft_deg."""
+    block = Part.makeBox(80, 60, 30)
+    top = Part.makePolygon([V(20, 15, 30.01), V(60, 15, 30.01), V(60, 45, 30.01), V(20, 45, 30.01), V(20, 15, 30.01)])
+    if draft_deg == 0:
+        tool = Part.Face(top).extrude(V(0, 0, -12.01))
+    else:
+        d = 12.01 * math.tan(math.radians(draft_deg))
+        bottom = Part.makePolygon([V(20 + d, 15 + d, 18), V(60 - d, 15 + d, 18), V(60 - d, 45 - d, 18), V(20 + d, 45 - d, 18),
+                                   V(20 + d, 15 + d, 18)])
+        tool = Part.makeLoft([bottom, top], True)
+    return block.cut(tool).removeSplitter()
+
+
+def pocket_edge(draft_deg=0.0):
+    """One rim edge of a rectangular pocket: at both ends it runs into the next wall (a concave neighbour),
+    while the top face goes on around the corner."""
+    def build():
+        s = pocket_block(draft_deg)
+        return s, edges_where(s, lambda p: abs(p.y - 15) < 0.01 and abs(p.z - 30) < TOL and 19 < p.x < 61)
+    return build
+
+
+def box_oblique_end():
+    """A box edge ending at an end face at 45 degrees to it (a convex end): the top back edge of a 60 x 40
+    x 30 box whose right end is cut off along x + y = 100."""
+    s = Part.makeBox(60, 40, 30).cut(Part.makeBox(60, 60, 40, V(60, -10, -5), V(0, 0, 1))
+                                     .rotated(V(60, 40, 0), V(0, 0, 1), 45)).removeSplitter()
+    return s, edges_where(s, lambda p: abs(p.y - 40) < TOL and abs(p.z - 30) < TOL)
+
+
 def s_outline():
     """Plan view S: line, convex arc R20, concave arc R30, line -- tangent throughout, from (0,60) to (120,10)."""
     return Part.Wire([
@@ -311,6 +342,9 @@ SPECS = {
     "draft_shoulder": (draft_shoulder, 5.0, None),
     "pocket_rim": (pocket_rim, 3.0, None),
     "s_chain": (s_plate, 4.0, None),
+    "pocket_edge": (pocket_edge(), 2.0, None),
+    "pocket_edge_draft": (pocket_edge(10.0), 2.0, None),
+    "box_oblique_end": (box_oblique_end, 4.0, None),
     "box_var": (box, None, [(0.0, 2.0), (1.0, 8.0)]),
     "lchannel_var": (lchannel, None, [(0.0, 2.0), (1.0, 6.0)]),
     "s_chain_var3": (s_plate, None, [(0.0, 2.5), (0.5, 5.0), (1.0, 3.0)]),

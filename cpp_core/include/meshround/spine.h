@@ -14,12 +14,25 @@ namespace meshround {
 
 enum class ContactRegion { Facet = 0, Edge = 1, Vertex = 2 };
 
+// Where a round runs into the face at a capped chain end (ends.h): its end profile is the section arc
+// moved along `along` (the chain's direction out of the end) onto the plane through `point` with unit
+// `normal` (pointing away from the round). Inactive: the section arc itself.
+struct EndCut {
+  bool active = false;
+  Vec3 point = Vec3::Zero(), normal = Vec3::Zero(), along = Vec3::Zero();
+  // Signed distance of p from the plane: > 0 past it, away from the round.
+  double past(const Vec3& p) const { return (p - point).dot(normal); }
+  // p moved along `along` onto the plane (an affine map: a rational arc stays one, with its weights).
+  Vec3 onto(const Vec3& p) const { return p - along * (past(p) / along.dot(normal)); }
+};
+
 struct ProfileStation {
   double s = 0;                 // arc length along the chain = the surface's u parameter
   double radius = 0;
   Vec3 centre;                  // ball centre (a point of the spine)
   Vec3 contact[2];              // contact on side A, side B
   ContactRegion region[2]{};
+  EndCut cut;                   // a capped end's station: its arc is the section's, moved onto the end face
   double angle() const;         // opening angle of the profile arc (radians)
 };
 

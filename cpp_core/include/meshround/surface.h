@@ -23,7 +23,7 @@ struct RoundingSurface {
 };
 
 // Rational quadratic Bezier of the circular arc from contact A to contact B about the centre:
-// poles (3) and weights (1, cos(angle/2), 1).
+// poles (3) and weights (1, cos(angle/2), 1); at a capped end (st.cut) the poles moved onto the end face.
 void profile_arc(const ProfileStation& st, Vec3 poles[3], double weights[3]);
 
 // Lofts the profiles (at least 4, sorted by s; for a loop, s in [0, period) and no repeat).

@@ -1,0 +1,263 @@
+#include "ends.h"
+
+#include "meshround/surface.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <unordered_map>
+
+namespace meshround {
+namespace {
+
+constexpr double kCoplanarDeg = 2;       // the end face's facets at the vertex agree within this
+constexpr double kMinCrossing = 0.3;     // |cos| between the chain and the plane's normal, at least
+constexpr double kSetbackSlack = 0.02;   // x r added to a nonzero setback (the last ball clear of the wall)
+
+}  // namespace
+
+EndCut end_face_cut(const MeshTopology& mesh, const SharpChain& chain, const BaseMeshes& base, bool at_start) {
+  EndCut cut;
+  if (chain.closed || (at_start ? chain.start_end : chain.end_end) != ChainEnd::Junction) return cut;
+  const int v = at_start ? chain.vertices.front() : chain.vertices.back();
+  // The end face: the facets at v on neither side of the chain.
+  Vec3 sum = Vec3::Zero();
+  std::vector<Vec3> normals;
+  for (const int* f = mesh.facets_begin(v); f != mesh.facets_end(v); ++f) {
+    if (base.side_of.count(*f)) continue;
+    const Vec3 n = mesh.facet_normal(*f);
+    const Vec3 a = mesh.corner(*f, 0), b = mesh.corner(*f, 1), c = mesh.corner(*f, 2);
+    sum += (b - a).cross(c - a);
+    normals.push_back(n);
+  }
+  if (normals.empty() || sum.norm() == 0) return cut;
+  const Vec3 n = sum.normalized();
+  for (const Vec3& m : normals)
+    if (m.dot(n) < std::cos(kCoplanarDeg * M_PI / 180)) return cut;  // two or more faces: left square
+  const double s_end = at_start ? 0.0 : chain.length;
+  const Vec3 out = at_start ? Vec3(-chain.tangent_at(s_end)) : chain.tangent_at(s_end);
+  if (std::abs(out.dot(n)) < kMinCrossing) return cut;
+  cut.active = true;
+  cut.point = mesh.point(v);
+  cut.normal = out.dot(n) > 0 ? n : Vec3(-n);
+  cut.along = out;
+  return cut;
+}
+
+double end_cut_setback(const ProfileStation& inside, double to_end, const EndCut& cut) {
+  if (!cut.active) return 0;
+  Vec3 poles[3];
+  double w[3];
+  ProfileStation square = inside;
+  square.cut = EndCut{};
+  profile_arc(square, poles, w);
+  double setback = 0;  // the poles carried to the end (to_end along the chain), then past the plane
+  for (const Vec3& p : poles) setback = std::max(setback, cut.past(p) / cut.along.dot(cut.normal) + to_end);
+  return setback > 1e-9 * inside.radius ? setback + kSetbackSlack * inside.radius : 0.0;
+}
+
+namespace {
+
+// The mesh being split: triangles that may be replaced, and points that may be added or moved.
+struct SplitMesh {
+  std::vector<Vec3> points;
+  std::vector<std::array<int, 3>> tris;
+  std::vector<char> gone;
+  std::unordered_map<std::uint64_t, int> edge_point;  // split edge -> its new point
+
+  int add(const Vec3& p) { points.push_back(p); return int(points.size()) - 1; }
+  void replace(int t, std::initializer_list<std::array<int, 3>> pieces) {
+    gone[t] = 1;
+    for (const auto& f : pieces) tris.push_back(f), gone.push_back(0);
+  }
+  int point_on_edge(int a, int b, const Vec3& p) {
+    auto [it, fresh] = edge_point.try_emplace(edge_key(a, b), -1);
+    if (fresh) it->second = add(p);
+    return it->second;
+  }
+};
+
+constexpr double kSnapShare = 0.25;  // x its shortest edge: a vertex that near the plane moves onto it
+
+// The corner as a vertex: the nearest vertex when it is one, or when it is a vertex of a flat neighbourhood
+// within kSnapShare of its shortest edge from it (moved there); else the facet or edge split at it.
+int insert_corner(SplitMesh& m, const MeshTopology& mesh, std::vector<int>& facets, const Vec3& q, double slack) {
+  int near = -1;
+  double near_d = INFINITY;
+  for (int t : facets)
+    for (int v : m.tris[t])
+      if (!m.gone[t] && (m.points[v] - q).norm() < near_d) near_d = (m.points[v] - q).norm(), near = v;
+  if (near >= 0 && near < mesh.num_vertices() && near_d > slack) {
+    double shortest = INFINITY;
+    bool flat = true;
+    const Vec3 n0 = mesh.facet_normal(*mesh.facets_begin(near));
+    for (const int* g = mesh.facets_begin(near); g != mesh.facets_end(near); ++g) flat &= mesh.facet_normal(*g).dot(n0) > 1 - 1e-6;
+    for (int w : mesh.vertex_neighbours(near)) shortest = std::min(shortest, (m.points[w] - m.points[near]).norm());
+    if (flat && std::abs((q - m.points[near]).dot(n0)) <= slack && near_d <= kSnapShare * shortest) {
+      m.points[near] = q;
+      return near;
+    }
+  }
+  int best = -1, region = 0;
+  double best_d = INFINITY;
+  for (int t : facets) {
+    if (m.gone[t]) continue;
+    int reg;
+    const auto& f = m.tris[t];
+    const double d = (closest_point_on_triangle(q, m.points[f[0]], m.points[f[1]], m.points[f[2]], &reg) - q).norm();
+    if (d < best_d) best_d = d, best = t, region = reg;
+  }
+  if (best < 0) return -1;
+  const auto f = m.tris[best];
+  for (int k = 0; k < 3; ++k)
+    if ((m.points[f[k]] - q).norm() <= slack) return f[k];
+  if (region >= 1 && region <= 3) {  // on edge (f[k], f[k+1]): split both facets on it
+    const int k = region - 1, a = f[k], b = f[(k + 1) % 3];
+    const int x = m.add(q);
+    for (size_t t = 0; t < m.tris.size(); ++t) {
+      if (m.gone[t]) continue;
+      const auto g = m.tris[t];
+      for (int j = 0; j < 3; ++j)
+        if ((g[j] == a && g[(j + 1) % 3] == b) || (g[j] == b && g[(j + 1) % 3] == a)) {
+          m.replace(int(t), {{g[j], x, g[(j + 2) % 3]}, {x, g[(j + 1) % 3], g[(j + 2) % 3]}});
+          facets.push_back(int(m.tris.size()) - 2), facets.push_back(int(m.tris.size()) - 1);
+          break;
+        }
+    }
+    return x;
+  }
+  const int x = m.add(q);
+  m.replace(best, {{f[0], f[1], x}, {f[1], f[2], x}, {f[2], f[0], x}});
+  for (int j = 3; j >= 1; --j) facets.push_back(int(m.tris.size()) - j);
+  return x;
+}
+
+// Vertices a hair off the plane, in a flat neighbourhood near the segment P -> Q: onto the plane (before
+// the corner is put in, so that it lands in a facet of the final shape).
+void snap_onto_plane(SplitMesh& m, const MeshTopology& mesh, const std::vector<int>& facets, const EndCut& cut, int p,
+                     const Vec3& P, const Vec3& Q, double slack) {
+  const Vec3 S = Q - P;
+  auto along = [&](const Vec3& x) { return (x - P).dot(S) / S.squaredNorm(); };
+  for (int t : facets) {
+    if (m.gone[t]) continue;
+    for (int v : m.tris[t]) {
+      if (v >= mesh.num_vertices() || v == p) continue;
+      const double d = cut.past(m.points[v]), a = along(m.points[v]);
+      if (std::abs(d) <= slack || a < -0.1 || a > 1.1) continue;
+      double shortest = INFINITY;
+      bool flat = true;
+      const Vec3 n0 = mesh.facet_normal(*mesh.facets_begin(v));
+      for (const int* g = mesh.facets_begin(v); g != mesh.facets_end(v); ++g) flat &= mesh.facet_normal(*g).dot(n0) > 1 - 1e-6;
+      for (int w : mesh.vertex_neighbours(v)) shortest = std::min(shortest, (mesh.point(w) - mesh.point(v)).norm());
+      if (!flat || std::abs(d) > kSnapShare * shortest) continue;
+      Vec3 dir = cut.normal - cut.normal.dot(n0) * n0;  // in the face, across the plane
+      if (dir.norm() < 0.3) continue;
+      dir.normalize();
+      m.points[v] -= dir * (d / dir.dot(cut.normal));
+    }
+  }
+}
+
+// Splits the facets crossed by the segment p -> q (both vertices, on the cut's plane) along the plane.
+void split_crossed(SplitMesh& m, std::vector<int>& facets, const EndCut& cut, int p, int q, double slack) {
+  const Vec3 P = m.points[p], Q = m.points[q], S = Q - P;
+  auto along = [&](const Vec3& x) { return (x - P).dot(S) / S.squaredNorm(); };
+  const size_t count = facets.size();
+  for (size_t i = 0; i < count; ++i) {
+    const int t = facets[i];
+    if (m.gone[t]) continue;
+    const auto f = m.tris[t];
+    double d[3];
+    for (int k = 0; k < 3; ++k) {
+      d[k] = cut.past(m.points[f[k]]);
+      if (std::abs(d[k]) <= slack) d[k] = 0;
+    }
+    const bool pos = d[0] > 0 || d[1] > 0 || d[2] > 0, neg = d[0] < 0 || d[1] < 0 || d[2] < 0;
+    if (!pos || !neg) continue;
+    // Where the plane crosses each edge (or passes through a vertex), and whether that lies on p -> q.
+    Vec3 cross_pts[3];
+    int n_cross = 0;
+    for (int k = 0; k < 3; ++k) {
+      const int j = (k + 1) % 3;
+      if (d[k] == 0) cross_pts[n_cross++] = m.points[f[k]];
+      else if (d[j] != 0 && (d[k] > 0) != (d[j] > 0)) cross_pts[n_cross++] = m.points[f[k]] + (m.points[f[j]] - m.points[f[k]]) * (d[k] / (d[k] - d[j]));
+    }
+    if (n_cross != 2) continue;
+    const double mid = along(0.5 * (cross_pts[0] + cross_pts[1]));
+    if (mid <= 0 || mid >= 1) continue;
+    // Rotate so that the lone vertex (or the one on the plane) is first.
+    int k0 = 0;
+    for (int k = 0; k < 3; ++k) {
+      const int a = (k + 1) % 3, b = (k + 2) % 3;
+      if (d[k] == 0 || (d[a] != 0 && d[b] != 0 && (d[a] > 0) == (d[b] > 0) && (d[k] > 0) != (d[a] > 0))) k0 = k;
+    }
+    const int a = f[k0], b = f[(k0 + 1) % 3], c = f[(k0 + 2) % 3];
+    const double da = d[k0], db = d[(k0 + 1) % 3], dc = d[(k0 + 2) % 3];
+    auto on = [&](int x, int y, double dx, double dy) { return m.point_on_edge(x, y, m.points[x] + (m.points[y] - m.points[x]) * (dx / (dx - dy))); };
+    if (da == 0) {  // through a: b and c on either side
+      const int x = on(b, c, db, dc);
+      m.replace(t, {{a, b, x}, {a, x, c}});
+      facets.push_back(int(m.tris.size()) - 2), facets.push_back(int(m.tris.size()) - 1);
+    } else {  // a alone on its side
+      const int x = on(a, b, da, db), y = on(c, a, dc, da);
+      const bool short_bd = (m.points[b] - m.points[y]).norm() < (m.points[c] - m.points[x]).norm();
+      if (short_bd) m.replace(t, {{a, x, y}, {x, b, y}, {b, c, y}});
+      else m.replace(t, {{a, x, y}, {x, b, c}, {x, c, y}});
+      for (int j = 3; j >= 1; --j) facets.push_back(int(m.tris.size()) - j);
+    }
+  }
+}
+
+}  // namespace
+
+std::vector<EndSegment> end_segments(const MeshTopology& mesh, const SharpChain& chain, const BaseMeshes& base,
+                                     const std::vector<ProfileStation>& stations, const RoundingSurface& surface) {
+  std::vector<EndSegment> out;
+  for (int end = 0; end < 2 && !chain.closed; ++end) {
+    const ProfileStation& st = end ? stations.back() : stations.front();
+    if (!st.cut.active) continue;
+    const int v = end ? chain.vertices.back() : chain.vertices.front();
+    for (int side = 0; side < 2; ++side) {
+      const Vec3 corner = surface.value(end ? surface.u_last : surface.u_first, side);
+      const double slack = on_plane_slack(st.radius, corner.cwiseAbs().maxCoeff());
+      bool goes_on = false;
+      for (int f : base.facets[side])
+        for (int k = 0; k < 3 && !goes_on; ++k) goes_on = st.cut.past(mesh.corner(f, k)) > slack;
+      if (goes_on) out.push_back({st.cut, v, corner, base.facets[side]});
+    }
+  }
+  return out;
+}
+
+bool split_along_end_segments(const MeshTopology& mesh, const std::vector<EndSegment>& segments, Points& V, Triangles& F) {
+  if (segments.empty()) return false;
+  SplitMesh m;
+  for (int v = 0; v < mesh.num_vertices(); ++v) m.points.push_back(mesh.point(v));
+  m.tris.reserve(size_t(mesh.num_facets()) + 64);
+  for (int f = 0; f < mesh.num_facets(); ++f) m.tris.push_back({mesh.F(f, 0), mesh.F(f, 1), mesh.F(f, 2)});
+  m.gone.assign(m.tris.size(), 0);
+  for (const EndSegment& seg : segments) {
+    const double slack = on_plane_slack((seg.corner - mesh.point(seg.end_vertex)).norm(), seg.corner.cwiseAbs().maxCoeff());
+    std::vector<int> facets = seg.facets;
+    snap_onto_plane(m, mesh, facets, seg.cut, seg.end_vertex, mesh.point(seg.end_vertex), seg.corner, slack);
+    const int q = insert_corner(m, mesh, facets, seg.corner, slack);
+    if (q < 0 || q == seg.end_vertex) continue;
+    split_crossed(m, facets, seg.cut, seg.end_vertex, q, slack);
+  }
+  const bool changed = m.points.size() > size_t(mesh.num_vertices()) ||
+                       std::any_of(m.gone.begin(), m.gone.end(), [](char g) { return g != 0; });
+  if (!changed) return false;
+  V.resize(Eigen::Index(m.points.size()), 3);
+  for (size_t i = 0; i < m.points.size(); ++i) V.row(Eigen::Index(i)) = m.points[i].transpose();
+  for (int v = 0; v < mesh.num_vertices(); ++v)
+    if (m.points[size_t(v)] == mesh.point(v)) V.row(v) = mesh.V.row(v);  // bit for bit
+  Eigen::Index n = 0;
+  for (size_t t = 0; t < m.tris.size(); ++t) n += !m.gone[t];
+  F.resize(n, 3);
+  n = 0;
+  for (size_t t = 0; t < m.tris.size(); ++t)
+    if (!m.gone[t]) F.row(n++) << m.tris[t][0], m.tris[t][1], m.tris[t][2];
+  return true;
+}
+
+}  // namespace meshround

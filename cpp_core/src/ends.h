@@ -1,0 +1,42 @@
+// Capped chain ends: the face a round runs into where its chain ends at a junction (private to cpp_core).
+//
+// Where three or more sharp edges meet at a chain's end, the faces there other than the chain's two
+// sides are its end face: a box's side face at a convex corner, a pocket's next wall where a rim edge
+// runs into it (the top face goes on past the end), a drafted or 45-degree wall. Like OCCT's fillet of
+// that one edge, the round runs on to the end face's plane and stops there: its end profile is the
+// section arc moved along the chain onto that plane (EndCut), the base meshes are trimmed up to the
+// plane, and the gap between the end profile and the end face is filled in the plane by the sewing pass.
+#pragma once
+#include "meshround/spine.h"
+#include "meshround/surface.h"
+
+namespace meshround {
+
+// The end face's plane at the chain's first (at_start) or last vertex; inactive when the end is not a
+// junction, when the faces there are not one plane, or when that plane runs nearly along the chain.
+EndCut end_face_cut(const MeshTopology& mesh, const SharpChain& chain, const BaseMeshes& base, bool at_start);
+
+// How far back from the end the last ball must sit so that its whole profile, carried along the chain,
+// reaches the plane (none of it starts past the plane): 0 for a plane square to the chain's end.
+// `inside`: a ball `to_end` short of the end (the chain's end is straight: balls there are translates).
+double end_cut_setback(const ProfileStation& inside, double to_end, const EndCut& cut);
+
+// Where a side's base mesh goes on past a capped end's plane (a pocket's top face around its corner),
+// the band's corner there must run along mesh edges: the segment from the chain's end vertex to the
+// round's corner on that side (both on the plane) is made of edges. The corner becomes a vertex
+// (splitting the facet or edge it lies in) and each facet the segment crosses is split along the plane;
+// a vertex of a flat neighbourhood a hair off the plane is moved onto it instead (no slivers). Input
+// vertices keep their indices (new ones follow); facets off the segment are the input's.
+struct EndSegment {
+  EndCut cut;
+  int end_vertex = -1;     // the chain's vertex at that end
+  Vec3 corner;             // where the round's side meets the plane (the surface's corner)
+  std::vector<int> facets; // the side's base facets near the segment
+};
+// The segments a chain's round needs (none where no base mesh goes on past an end's plane).
+std::vector<EndSegment> end_segments(const MeshTopology& mesh, const SharpChain& chain, const BaseMeshes& base,
+                                     const std::vector<ProfileStation>& stations, const RoundingSurface& surface);
+// Returns false (V, F untouched) when there is nothing to split.
+bool split_along_end_segments(const MeshTopology& mesh, const std::vector<EndSegment>& segments, Points& V, Triangles& F);
+
+}  // namespace meshround
