@@ -265,7 +265,7 @@ TrimLines trim_base_meshes(const MeshTopology& mesh, const SharpChain& chain, co
         // slivers between itself and the line); or, for a vertex on an end face's edge, within 0.4 of the
         // line's spacing when its facets keep their shape (it would leave a sliver between the arc and
         // itself in the end face).
-        else if (std::abs(s.d) > 0 && !edit.moved.count(v) && !on_end_plane) {
+        else if (std::abs(s.d) > 0 && !edit.moved.count(v)) {
           double shortest = INFINITY;
           for (int w : mesh.vertex_neighbours(v))  // (facets on the chain go with the band: their shape is moot)
             if (!chain_vertices.count(w)) shortest = std::min(shortest, (mesh.point(w) - mesh.point(v)).norm());
@@ -275,8 +275,9 @@ TrimLines trim_base_meshes(const MeshTopology& mesh, const SharpChain& chain, co
           if (std::abs(s.d) < std::max(near_edges, near_line) &&
               snap_target(mesh, v, line_distance, s.d, s.u, away, 0.02 * opt.tolerance, &q, &on_crease)) {
             const double move = (q - mesh.point(v)).norm();
-            if (move < near_edges || ((on_crease ? move < near_line : move < kNearShaped * shortest) &&
-                                      snap_keeps_shape(mesh, edit, v, q))) {
+            const bool stays_on_end_plane = !on_end_plane || std::abs(past_end(q)) <= plane_slack;  // (e.g. along the end face's edge)
+            if (stays_on_end_plane && (move < near_edges || ((on_crease ? move < near_line : move < kNearShaped * shortest) &&
+                                      snap_keeps_shape(mesh, edit, v, q)))) {
               edit.moved[v] = q;
               s.d = 0;
               ++out.vertices_snapped;

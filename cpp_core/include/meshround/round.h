@@ -1,7 +1,9 @@
 // round_edges(): the passes of the paper in order, for every chain the seeds select.
 //
 //   trace_chain -> collect_base_meshes -> solve_station (adaptive) -> loft_profiles
-//     -> trim_base_meshes -> mesh_rounding_surface -> sew_round -> write_mesh
+//     -> end faces (ends.h: the end profiles onto the end faces' planes, the base mesh split at the band's
+//        corner where it goes on past one) -> trim_base_meshes -> mesh_rounding_surface -> sew_round
+//     -> improve_new_facets -> check_result (guard.h) -> write_mesh
 //
 // Chains are rounded one after the other, each on the result of the previous one. Chains that meet at a
 // corner are refused (the corner blend between their rounds is not made); a radius law is split among
