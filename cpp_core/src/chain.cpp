@@ -324,7 +324,7 @@ double SharpChain::project_from(const Vec3& p, double s_hint, double* distance) 
 }
 
 BaseMeshes collect_base_meshes(const MeshTopology& mesh, const SharpChain& chain, double reach_distance,
-                               double feature_angle_deg) {
+                               double feature_angle_deg, const std::unordered_set<int>* earlier_round) {
   BaseMeshes base;
   base.reach_distance = reach_distance;
   std::unordered_set<std::uint64_t> chain_edges;
@@ -381,7 +381,8 @@ BaseMeshes collect_base_meshes(const MeshTopology& mesh, const SharpChain& chain
         if (g >= 0 && mesh.facet_degenerate(g))
           throw RoundingError(ErrorCode::NonManifoldInput, "facet " + std::to_string(g) + " at " + format_point(mesh.corner(g, 0)) +
                               " near the chain is degenerate (no area); repair the mesh there first");
-        if (g < 0 || (!fold_facets.count(f) && mesh.is_feature_edge(a, b, feature_angle_deg))) {
+        const bool earlier = g >= 0 && earlier_round && std::all_of(&mesh.F(g, 0), &mesh.F(g, 0) + 3, [&](int x) { return earlier_round->count(x) > 0; });
+        if (g < 0 || earlier || (!fold_facets.count(f) && mesh.is_feature_edge(a, b, feature_angle_deg))) {
           base.walls[side].insert(key);
           continue;
         }

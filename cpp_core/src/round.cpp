@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <array>
 #include <set>
 
 #include "ends.h"
@@ -136,21 +137,53 @@ std::vector<ProfileStation> sample_profiles(const SpineContext& ctx, const Radiu
   return st;
 }
 
+// Where a chain meets another picked chain at a corner (round_edges): the plane both rounds stop at there
+// (through the corner vertex, bisecting the two chains), and whether the other round is made already (then
+// this round's end column is that round's, see SharedEnds); and the vertices of the rounds made before.
+struct CornerEnd {
+  Vec3 point, normal;
+  bool other_made = false;
+};
+struct NetworkPart {
+  std::vector<CornerEnd> corners;
+  std::vector<Vec3> earlier_round_points;
+};
+
+// The corner at a chain end (its end vertex is the corner's point), or null.
+const CornerEnd* corner_at(const NetworkPart& net, const Vec3& end_point) {
+  for (const CornerEnd& c : net.corners)
+    if ((c.point - end_point).norm() <= 1e-9 * std::max(1.0, end_point.cwiseAbs().maxCoeff())) return &c;
+  return nullptr;
+}
+
 // The profiles of a chain's round, its capped ends cut by their end faces (ends.h): where an end face
 // leans over the round, the balls stop short of it (their setback) and the last one is carried on along
 // the chain to the face; every capped end's profile is then moved onto its face's plane.
+// At a corner with another round the plane is the corner's, not the end face's.
 std::vector<ProfileStation> end_cut_profiles(const SpineContext& ctx, const RadiusLaw& law, double tolerance, long max_new_facets,
-                                             RoundingSurface& surface, double* loft_deviation) {
+                                             const NetworkPart& net, RoundingSurface& surface, double* loft_deviation) {
   const SharpChain& chain = ctx.chain;
   const double L = chain.length;
   EndCut cut[2];
   double setback[2] = {0, 0};
   for (int end = 0; end < 2 && !chain.closed; ++end) {
     cut[end] = end_face_cut(ctx.mesh, chain, ctx.base, end == 0);
+    const CornerEnd* corner = corner_at(net, end ? chain.points.back() : chain.points.front());
+    if (corner) {
+      const Vec3 out = end ? chain.tangent_at(L) : Vec3(-chain.tangent_at(0));
+      cut[end] = EndCut{true, corner->point, out.dot(corner->normal) > 0 ? corner->normal : Vec3(-corner->normal), out};
+    }
     if (!cut[end].active) continue;
     // Measured on a ball clear of the end face (the one at the end may already lean on it).
     const double to_end = std::min(2 * law.max_radius(), 0.25 * L);
     setback[end] = end_cut_setback(station(ctx, law, end ? L - to_end : to_end), to_end, cut[end]);
+    // A mitre that cuts back into the rounds (two convex edges meeting, the third edge kept sharp): its
+    // rows would have to stop at a different length on each side of the profile, which one lofted
+    // surface of this kind does not hold.
+    if (corner && setback[end] > 0)
+      throw RoundingError(ErrorCode::CornerNotBlendable, "the rounds that meet at " + format_point(corner->point) + " would be cut back by "
+                          "their mitre (its plane leans over them: a convex corner whose third edge stays sharp, or drafted walls): that corner is "
+                          "not made yet; round one of those chains");
   }
   if (setback[0] + setback[1] > 0.5 * L)
     throw RoundingError(ErrorCode::CornerNotBlendable, "the chain through " + format_point(chain.point_at(0.5 * L)) + " is too short for its round to "
@@ -202,16 +235,30 @@ double smallest_angle_deg(const Vec3& a, const Vec3& b, const Vec3& c) { return 
 constexpr double kThinDeg = 10;
 constexpr double kWiderReaches[] = {1.25, 1.5, 2, 3};
 
-// `split`: the mesh is the input already split along the chain's end segments (ends.h).
+// `split`: the mesh is the input already split along the chain's end segments (ends.h). `net`: its corners
+// with other chains of the call; `round_points` (if given) gets the round's vertices.
 RoundedChain round_one_chain(const MeshTopology& mesh, const Vec3& seed, const RoundOptions& opt, RoundReport& report,
-                             Points& V_out, Triangles& F_out, bool is_probe = false, bool split = false) {
+                             Points& V_out, Triangles& F_out, const NetworkPart& net = {}, std::vector<Vec3>* round_points = nullptr,
+                             bool is_probe = false, bool split = false) {
   PassTimer timer(report);
   const double r_max = opt.max_radius();
   SharpChain chain = trace_chain(mesh, seed, opt.feature_angle_deg, opt.reach * r_max);
   chain.index_segments();
   const RadiusLaw law(opt, chain, opt.reach * r_max);
   const double reach = opt.reach * law.max_radius();
-  const BaseMeshes base = collect_base_meshes(mesh, chain, reach, opt.feature_angle_deg);
+  // The rounds made before in this call: their vertices, which the base meshes stop at and a shared
+  // corner's end column takes.
+  std::unordered_set<int> earlier;
+  std::vector<std::pair<Vec3, int>> earlier_points;
+  if (!net.earlier_round_points.empty()) {
+    std::set<std::array<double, 3>> wanted;
+    for (const Vec3& p : net.earlier_round_points) wanted.insert({p.x(), p.y(), p.z()});
+    for (int v = 0; v < mesh.num_vertices(); ++v) {
+      const Vec3 p = mesh.point(v);
+      if (wanted.count({p.x(), p.y(), p.z()})) earlier.insert(v), earlier_points.push_back({p, v});
+    }
+  }
+  const BaseMeshes base = collect_base_meshes(mesh, chain, reach, opt.feature_angle_deg, earlier.empty() ? nullptr : &earlier);
   check_base_meshes(mesh, base);
   timer.done("chain");
 
@@ -220,7 +267,7 @@ RoundedChain round_one_chain(const MeshTopology& mesh, const Vec3& seed, const R
   const SpineContext ctx{mesh, chain, base, {&dist_a, &dist_b}};
   RoundingSurface surface;
   RoundedChain out;
-  const std::vector<ProfileStation> stations = end_cut_profiles(ctx, law, tol, opt.max_new_facets, surface, &out.report.surface_deviation);
+  const std::vector<ProfileStation> stations = end_cut_profiles(ctx, law, tol, opt.max_new_facets, net, surface, &out.report.surface_deviation);
   timer.done("surface");
   if (!split) {  // a base mesh going on past an end face's plane: split along the band's corner, round that
     Points V_split;
@@ -228,7 +275,7 @@ RoundedChain round_one_chain(const MeshTopology& mesh, const Vec3& seed, const R
     if (split_along_end_segments(mesh, end_segments(mesh, chain, base, stations, surface), V_split, F_split)) {
       const MeshTopology split_mesh(V_split, F_split);
       timer.done("ends");
-      return round_one_chain(split_mesh, seed, opt, report, V_out, F_out, is_probe, true);
+      return round_one_chain(split_mesh, seed, opt, report, V_out, F_out, net, round_points, is_probe, true);
     }
   }
 
@@ -249,7 +296,19 @@ RoundedChain round_one_chain(const MeshTopology& mesh, const Vec3& seed, const R
   const TrimLines trim = trim_base_meshes(mesh, chain, base, surface, stations, {tol, spacing, shape}, edit);
   timer.done("trim");
   const size_t round_begin = edit.added.size();
-  const RoundMeshStats mesh_stats = mesh_rounding_surface(surface, stations, trim, tol, edit);
+  SharedEnds shared;
+  for (int end = 0; end < 2 && !chain.closed; ++end) {
+    const CornerEnd* c = corner_at(net, end ? chain.points.back() : chain.points.front());
+    shared.no_graded_rows |= c != nullptr;  // both rounds at a corner make the same rows
+    shared.at[end] = c && c->other_made;
+  }
+  const double weld = 1e-6 * tol;
+  shared.vertex_at = [&](const Vec3& p) {
+    for (const auto& [q, v] : earlier_points)
+      if ((q - p).norm() <= weld) return v;
+    return -1;
+  };
+  const RoundMeshStats mesh_stats = mesh_rounding_surface(surface, stations, trim, tol, edit, shared);
   timer.done("tessellate");
   const SewStats sew = sew_round(edit, round_begin, round_begin + mesh_stats.facets, shape);
   timer.done("sew");
@@ -258,6 +317,8 @@ RoundedChain round_one_chain(const MeshTopology& mesh, const Vec3& seed, const R
   for (size_t f = round_begin; f < round_begin + mesh_stats.facets; ++f)
     round_vertices.insert(edit.added[f].begin(), edit.added[f].end());
   const ImproveStats improved = improve_new_facets(edit, round_vertices, within_reach);
+  if (round_points)
+    for (int v : round_vertices) round_points->push_back(edit.point(v));
   timer.done("improve");
   check_result(edit, chain, reach, tol);  // refuses a result worse than its input (guard.h)
   timer.done("check");
@@ -316,7 +377,7 @@ RoundedChain round_one_chain(const MeshTopology& mesh, const Vec3& seed, const R
       Points V;
       Triangles F;
       try {
-        const RoundedChain probe = round_one_chain(mesh, seed, o, scratch, V, F, true, split);
+        const RoundedChain probe = round_one_chain(mesh, seed, o, scratch, V, F, net, nullptr, true, split);
         if (probe.report.thin_facets > 0) continue;
       } catch (const RoundingError& e) {
         if (e.code == ErrorCode::Cancelled) throw;
@@ -363,6 +424,46 @@ std::vector<RoundOptions> options_per_chain(const RoundOptions& opt, const std::
   return out;
 }
 
+// The corners where picked chains meet: a vertex where exactly two of them end is blended by a miter, as
+// OCCT blends two rounds meeting where a third edge stays sharp: both rounds run on to the plane through
+// the vertex bisecting the two chains and stop there, meeting along one curve (exact when their radii
+// and faces match there; otherwise the second round's rows find no vertex of the first's to share and
+// the call is refused, naming the corner). Three or more rounds at a vertex, a chain running on through
+// another's end, and variable radii into a corner are refused, naming the vertex.
+std::vector<NetworkPart> find_corners(const MeshTopology& input, const std::vector<SharpChain>& chains, const std::vector<Vec3>& picked,
+                                      const RoundOptions& opt) {
+  std::vector<NetworkPart> out(chains.size());
+  auto into = [](const SharpChain& c, bool at_start) {
+    const size_t n = c.points.size();
+    return at_start ? Vec3((c.points[1] - c.points[0]).normalized()) : Vec3((c.points[n - 2] - c.points[n - 1]).normalized());
+  };
+  for (size_t k = 0; k < chains.size(); ++k) {
+    if (chains[k].closed) continue;
+    for (bool at_start : {true, false}) {
+      const int v = at_start ? chains[k].vertices.front() : chains[k].vertices.back();
+      std::vector<std::pair<size_t, bool>> others;  // (chain, meets there at its start)
+      for (size_t j = 0; j < chains.size(); ++j) {
+        if (j == k || std::find(chains[j].vertices.begin(), chains[j].vertices.end(), v) == chains[j].vertices.end()) continue;
+        const bool j_start = !chains[j].closed && chains[j].vertices.front() == v;
+        if (chains[j].closed || (!j_start && chains[j].vertices.back() != v))
+          throw RoundingError(ErrorCode::CornerNotBlendable, "the chain picked at " + format_point(picked[k]) + " ends at " + format_point(input.point(v)) +
+                              " on the side of the chain picked at " + format_point(picked[j]) + ": a round running into another's side is not made yet");
+        others.push_back({j, j_start});
+      }
+      if (others.empty()) continue;
+      if (others.size() > 1)
+        throw RoundingError(ErrorCode::CornerNotBlendable, std::to_string(others.size() + 1) + " of the picked chains meet at " + format_point(input.point(v)) +
+                            ": corners of three or more rounds are not made yet (round fewer of them there)");
+      if (!opt.radius_law.empty())
+        throw RoundingError(ErrorCode::CornerNotBlendable, "the chains picked at " + format_point(picked[k]) + " and " + format_point(picked[others[0].first]) +
+                            " meet at " + format_point(input.point(v)) + ": variable radii into a corner are not blended yet");
+      const Vec3 d = into(chains[k], at_start) - into(chains[others[0].first], others[0].second);
+      out[k].corners.push_back({input.point(v), d.normalized(), others[0].first < k});
+    }
+  }
+  return out;
+}
+
 }  // namespace
 
 std::vector<SharpChain> find_chains(const Points& V, const Triangles& F, const std::vector<Vec3>& seeds,
@@ -403,13 +504,6 @@ RoundResult round_edges(const Points& V, const Triangles& F, const std::vector<V
     std::vector<int> key = c.vertices;
     std::sort(key.begin(), key.end());
     if (!seen.insert(key).second) continue;
-    // Where chains meet, the rounds need a corner blend, which is not made: refuse rather than guess.
-    for (size_t k = 0; k < chains.size(); ++k)
-      for (int v : {c.vertices.front(), c.vertices.back()})
-        if (std::find(chains[k].vertices.begin(), chains[k].vertices.end(), v) != chains[k].vertices.end())
-          throw RoundingError(ErrorCode::CornerNotBlendable, "the chains picked at " + format_point(picked[k]) + " and " + format_point(seed) +
-                              " meet at " + format_point(input.point(v)) +
-                              "; chains that meet at a corner cannot be rounded together (round one of them)");
     // The middle of an edge of the chain picks the same chain again, even after other chains are rounded.
     const size_t i = (c.points.size() - 1) / 2;
     chain_seeds.push_back(0.5 * (c.points[i] + c.points[(i + 1) % c.points.size()]));
@@ -417,17 +511,22 @@ RoundResult round_edges(const Points& V, const Triangles& F, const std::vector<V
     chains.push_back(std::move(c));
   }
   const std::vector<RoundOptions> chain_options = options_per_chain(opt, chains, picked);
+  std::vector<NetworkPart> network = find_corners(input, chains, picked, opt);
+  std::vector<Vec3> made_points;  // the vertices of the rounds made so far (kept only where a corner needs them)
   Points cur_V;
   Triangles cur_F;
   for (size_t k = 0; k < chain_seeds.size(); ++k) {
     poll_cancel();
     Points next_V;
     Triangles next_F;
+    NetworkPart& net = network[k];
+    if (std::any_of(net.corners.begin(), net.corners.end(), [](const CornerEnd& c) { return c.other_made; })) net.earlier_round_points = made_points;
+    std::vector<Vec3>* keep = network.size() > 1 && !net.corners.empty() ? &made_points : nullptr;
     if (k == 0) {
-      result.chains.push_back(round_one_chain(input, chain_seeds[k], chain_options[k], result.report, next_V, next_F));
+      result.chains.push_back(round_one_chain(input, chain_seeds[k], chain_options[k], result.report, next_V, next_F, net, keep));
     } else {
       const MeshTopology mesh(cur_V, cur_F);
-      result.chains.push_back(round_one_chain(mesh, chain_seeds[k], chain_options[k], result.report, next_V, next_F));
+      result.chains.push_back(round_one_chain(mesh, chain_seeds[k], chain_options[k], result.report, next_V, next_F, net, keep));
     }
     cur_V.swap(next_V);
     cur_F.swap(next_F);

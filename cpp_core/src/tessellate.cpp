@@ -102,7 +102,7 @@ double profile_step(const RoundingSurface& surface, const std::vector<ProfileSta
 }
 
 RoundMeshStats mesh_rounding_surface(const RoundingSurface& surface, const std::vector<ProfileStation>& stations,
-                                     const TrimLines& trim, double tolerance, MeshEdit& edit) {
+                                     const TrimLines& trim, double tolerance, MeshEdit& edit, const SharedEnds& shared) {
   const int nv = profile_segments(stations, tolerance);
   // (A capped end's profile is moved onto its end face: the surface there is not the ball's section.)
   const ProfileStation* widest = nullptr;
@@ -180,7 +180,7 @@ RoundMeshStats mesh_rounding_surface(const RoundingSurface& surface, const std::
       steps.push_back((row[i].u - row[i - 1].u) / profile_step(surface, stations, nv, row[i - 1].u));
     std::sort(steps.begin(), steps.end());
     const double typical_step = steps.empty() ? INFINITY : steps[steps.size() / 2];
-    for (int k = 1; k <= kGradedRows && typical_step < kGradedStep * 2.0 / (1 << k); ++k) {
+    for (int k = 1; k <= kGradedRows && !shared.no_graded_rows && typical_step < kGradedStep * 2.0 / (1 << k); ++k) {
       const double share = 1.0 / (1 << k);  // its distance from the line, in profile steps
       graded[side].push_back({v_at_angle_fraction(surface, *widest, side ? 1 - share / nv : share / nv), row_samples(line_us, share)});
     }
@@ -203,7 +203,17 @@ RoundMeshStats mesh_rounding_surface(const RoundingSurface& surface, const std::
           row.push_back({row.front().id, samples[i], v});
           break;
         }
-        inner.push_back(surface.value(samples[i], v) + offsets.at(samples[i], v));
+        const Vec3 p = surface.value(samples[i], v) + offsets.at(samples[i], v);
+        const bool end = !surface.closed && (i == 0 || i + 1 == samples.size());
+        if (end && shared.at[i == 0 ? 0 : 1]) {  // the other round's vertex at this corner
+          const int id = shared.vertex_at(p);
+          if (id < 0)
+            throw RoundingError(ErrorCode::CornerNotBlendable, "the rounds meeting at " + format_point(p) +
+                                " do not meet along one curve (their radii or faces differ there): that corner is not made yet");
+          row.push_back({id, samples[i], v});
+          continue;
+        }
+        inner.push_back(p);
         row.push_back({-int(inner.size()), samples[i], v});
       }
       rows.push_back(row);

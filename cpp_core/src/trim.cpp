@@ -147,6 +147,9 @@ void remove_cap_corner(const MeshTopology& mesh, const BaseMeshes& base, int cor
     std::vector<Vec3> samples{g, (p0 + p1) / 2, (p1 + p2) / 2, (p2 + p0) / 2};
     for (int k = 0; k < 3; ++k)
       if (mesh.F(f, k) == corner) samples.push_back(mesh.point(corner) + 0.02 * (g - mesh.point(corner)));
+    // (At an end cut by a plane, only the end face's facets in that plane: not a face that merely meets it.)
+    if (st.cut.active && !(std::abs(st.cut.past(p0)) <= 1e-3 * r && std::abs(st.cut.past(p1)) <= 1e-3 * r && std::abs(st.cut.past(p2)) <= 1e-3 * r))
+      continue;
     const bool vertex_in = in_corner_region(p0, true) || in_corner_region(p1, true) || in_corner_region(p2, true);
     if (!vertex_in && std::none_of(samples.begin(), samples.end(), strictly_inside)) continue;
     if (edit.removed.insert(f).second) ++*removed;

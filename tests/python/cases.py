@@ -140,6 +140,15 @@ def pocket_edge(draft_deg=0.0):
     return build
 
 
+def pocket_rim_square(draft_deg=0.0):
+    """The whole rim of a rectangular pocket: four edges, each meeting the next at a corner where the
+    pocket's wall edge stays sharp (OCCT mitres the rounds there)."""
+    def build():
+        s = pocket_block(draft_deg)
+        return s, edges_where(s, lambda p: abs(p.z - 30) < TOL and 19 < p.x < 61 and 14 < p.y < 46)
+    return build
+
+
 def box_oblique_end():
     """A box edge ending at an end face at 45 degrees to it (a convex end): the top back edge of a 60 x 40
     x 30 box whose right end is cut off along x + y = 100."""
@@ -269,6 +278,25 @@ class Case:
         """A point on the chain, a third of the way along (away from chain ends and edge joints)."""
         return V(*self.points[len(self.points) // 3])
 
+    @property
+    def seeds(self):
+        """What a user picks: one point, or where the chain's edges meet at corners (a turn sharper
+        than the feature angle), the middle of every edge: each is a chain of its own, rounded together."""
+        if len(self.chain) > 1 and self.corners:
+            return [e.valueAt(0.5 * (e.FirstParameter + e.LastParameter)) for e in self.chain]
+        return [self.seed]
+
+    @property
+    def corners(self):
+        """True when consecutive edges of the chain meet at an angle (not tangent)."""
+        ordered = ordered_chain(self.chain)
+        for (a, ra), (b, rb) in zip(ordered, ordered[1:] + (ordered[:1] if self.closed else [])):
+            ta = a.tangentAt(a.FirstParameter if ra else a.LastParameter) * (-1 if ra else 1)
+            tb = b.tangentAt(b.LastParameter if rb else b.FirstParameter) * (-1 if rb else 1)
+            if ta.getAngle(tb) > math.radians(30):
+                return True
+        return False
+
     def _occt_fillet(self, radius):
         if self.law is None:
             return self.solid.makeFillet(radius, self.chain)
@@ -345,6 +373,7 @@ SPECS = {
     "pocket_edge": (pocket_edge(), 2.0, None),
     "pocket_edge_draft": (pocket_edge(10.0), 2.0, None),
     "box_oblique_end": (box_oblique_end, 4.0, None),
+    "pocket_rim_square": (pocket_rim_square(), 2.0, None),
     "box_var": (box, None, [(0.0, 2.0), (1.0, 8.0)]),
     "lchannel_var": (lchannel, None, [(0.0, 2.0), (1.0, 6.0)]),
     "s_chain_var3": (s_plate, None, [(0.0, 2.5), (0.5, 5.0), (1.0, 3.0)]),

@@ -60,6 +60,13 @@ def test_chains_meeting_at_a_corner_are_refused_and_the_input_kept(box):
     assert np.array_equal(before[0], after[0]) and np.array_equal(before[1], after[1])
 
 
+def test_three_rounds_at_a_corner_are_refused_naming_it(box):
+    seeds = [BOX_SEED, V(X, Y / 2, Z), V(X, Y, Z / 2)]  # the three edges at the box corner (X, Y, Z)
+    with pytest.raises(MeshRound.RoundingError, match=r"3 of the picked chains meet at \(100, 60, 40\)") as refused:
+        MeshRound.round_edges(box, seeds, 3.0)
+    assert refused.value.code == "corner_not_blendable"
+
+
 def test_a_chain_without_control_points_is_refused(box):
     with pytest.raises(MeshRound.RoundingError, match="no radius control point lies on the chain picked at"):
         MeshRound.round_edges(box, [BOX_SEED, BOX_OTHER_SEED], BACK_LAW)

@@ -73,7 +73,9 @@ struct BaseMeshes {
   double reach_distance = 0;                   // as collected: the band must lie within it
 };
 
+// `earlier_round`: vertices of rounds made before in the same call (round.h); a facet with all three
+// among them is a wall, so that a base mesh stops where an earlier round begins (along its trim line).
 BaseMeshes collect_base_meshes(const MeshTopology& mesh, const SharpChain& chain, double reach_distance,
-                               double feature_angle_deg);
+                               double feature_angle_deg, const std::unordered_set<int>* earlier_round = nullptr);
 
 }  // namespace meshround

@@ -5,9 +5,11 @@
 //        corner where it goes on past one) -> trim_base_meshes -> mesh_rounding_surface -> sew_round
 //     -> improve_new_facets -> check_result (guard.h) -> write_mesh
 //
-// Chains are rounded one after the other, each on the result of the previous one. Chains that meet at a
-// corner are refused (the corner blend between their rounds is not made); a radius law is split among
-// the chains, each control point going to the chain nearest to it.
+// Chains are rounded one after the other, each on the result of the previous one. Where two of them end
+// at one vertex, their rounds are mitred (find_corners in round.cpp): both stop at the plane bisecting
+// the chains there, the second taking the first's vertices for its end; other corners are refused
+// (corner_not_blendable, naming the vertex). A radius law is split among the chains, each control point
+// going to the chain nearest to it.
 #pragma once
 #include <map>
 #include <string>

@@ -7,6 +7,7 @@
 // the surface. Beside a trim line much finer than that, graded rows lead from its spacing to the
 // round's. Neighbouring rows are zipped with the shorter diagonal.
 #pragma once
+#include <functional>
 #include <vector>
 
 #include "meshround/trim.h"
@@ -19,8 +20,17 @@ struct RoundMeshStats {
   double max_deviation = 0; // largest distance found from a new facet (centroid, edge midpoints) to the surface
 };
 
+// Where a round meets another at a corner (round.h), its end column is the other round's: the rows are
+// the regular ones only (no graded rows, whose ends the other round would not have), and each inner row's
+// end point at a shared end is the vertex `shared_end` finds there (-1: none; then the round is refused).
+struct SharedEnds {
+  bool at[2] = {false, false};                         // u_first, u_last
+  std::function<int(const Vec3&)> vertex_at;          // an existing vertex at that point, or -1
+  bool no_graded_rows = false;                         // set for every round with a corner end
+};
+
 RoundMeshStats mesh_rounding_surface(const RoundingSurface& surface, const std::vector<ProfileStation>& stations,
-                                     const TrimLines& trim, double tolerance, MeshEdit& edit);
+                                     const TrimLines& trim, double tolerance, MeshEdit& edit, const SharedEnds& shared = {});
 
 // Spacing across the profile (and the largest step along it) for a tolerance: the v levels' count.
 int profile_segments(const std::vector<ProfileStation>& stations, double tolerance);
