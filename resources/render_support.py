@@ -3,6 +3,8 @@ import os
 import traceback
 
 import FreeCAD
+import Mesh
+import numpy as np
 from pivy import coin
 
 
@@ -32,3 +34,19 @@ def run_unattended(main):
         traceback.print_exc()
     finally:
         os._exit(0)
+
+
+def rest_and_band(base, mesh):
+    """Two Mesh.Mesh of a rounded `mesh`: the facets that keep a vertex of `base` (the sharp input), and
+    the facets whose three vertices are all new (the round and its band).  Input vertices keep their
+    exact values, so "new" is exact."""
+    old = {tuple(p) for p in base.Topology[0]}
+    points, facets = mesh.Topology
+    is_new = np.array([tuple(p) not in old for p in points])
+    band = is_new[np.asarray(facets)].all(axis=1)
+    parts = []
+    for keep in (~band, band):
+        part = Mesh.Mesh(mesh)
+        part.removeFacets([int(i) for i in np.flatnonzero(~keep)])
+        parts.append(part)
+    return parts

@@ -14,12 +14,10 @@ import sys
 
 import FreeCAD
 import FreeCADGui
-import Mesh
-import numpy as np
 from PySide import QtCore, QtGui
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from render_support import run_unattended, set_camera  # noqa: E402
+from render_support import rest_and_band, run_unattended, set_camera  # noqa: E402
 
 OUT = os.environ.get("SRAIL_OUT", os.path.join(os.getcwd(), "out"))
 SMALL = os.environ.get("SRAIL_SMALL")
@@ -39,17 +37,11 @@ ROWS = [
 def split_new_facets(doc, name):
     """Two Mesh::Features for object `name`: the facets it shares vertices with the base mesh on, and
     the facets whose three vertices are all new (the round).  Input vertices keep their exact values."""
-    mesh = doc.getObject(name).Mesh
     if name == BASE:
         return [(doc.getObject(name), GREY)]
-    old = {tuple(p) for p in doc.getObject(BASE).Mesh.Topology[0]}
-    points, facets = mesh.Topology
-    is_new = np.array([tuple(p) not in old for p in points])
-    band = is_new[np.asarray(facets)].all(axis=1)
     out = []
-    for suffix, keep, color in (("Rest", ~band, GREY), ("Band", band, ORANGE)):
-        part = Mesh.Mesh(mesh)
-        part.removeFacets([int(i) for i in np.flatnonzero(~keep)])
+    parts = rest_and_band(doc.getObject(BASE).Mesh, doc.getObject(name).Mesh)
+    for suffix, part, color in zip(("Rest", "Band"), parts, (GREY, ORANGE)):
         feature = doc.addObject("Mesh::Feature", f"{name}{suffix}")
         feature.Mesh = part
         out.append((feature, color))
