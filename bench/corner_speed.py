@@ -1,0 +1,40 @@
+"""Console-call times of a pocket rim rounded as one network (four chains, four mitred corners) against
+one of its edges alone, on two mesh sizes of the 80 x 60 x 30 block with a 40 x 30, 12 deep pocket, r = 2.
+
+    /usr/bin/python3 bench/corner_speed.py      (prints the best of three calls per row)
+"""
+import os
+import sys
+import time
+
+sys.path.append("/usr/lib/freecad-python3/lib")
+import FreeCAD  # noqa: E402
+import MeshPart  # noqa: E402
+import Part  # noqa: E402
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "Mod", "MeshRound"))
+import MeshRound  # noqa: E402
+
+V = FreeCAD.Vector
+RIM = [V(40, 15, 30), V(60, 30, 30), V(40, 45, 30), V(20, 30, 30)]
+
+
+def best_of_three(mesh, seeds):
+    times = []
+    for _ in range(3):
+        start = time.perf_counter()
+        MeshRound.round_edges(mesh, seeds, 2.0)
+        times.append(time.perf_counter() - start)
+    return min(times)
+
+
+def main():
+    block = Part.makeBox(80, 60, 30).cut(Part.makeBox(40, 30, 13, V(20, 15, 18))).removeSplitter()
+    for max_length in (1.0, 0.45):
+        mesh = MeshPart.meshFromShape(Shape=block, MaxLength=max_length)
+        print(f"{mesh.CountFacets} facets: whole rim (4 chains, 4 mitres) {best_of_three(mesh, RIM):.3f} s, "
+              f"one rim edge {best_of_three(mesh, RIM[:1]):.3f} s")
+
+
+if __name__ == "__main__":
+    main()
