@@ -235,6 +235,27 @@ double smallest_angle_deg(const Vec3& a, const Vec3& b, const Vec3& c) { return 
 constexpr double kThinDeg = 10;
 constexpr double kWiderReaches[] = {1.25, 1.5, 2, 3};
 
+// Facets made (or kept with a vertex snapped onto a trim line) against the input facets they replace:
+// how many are under kThinDeg; their smallest angle and the replaced input facets' (degrees) out.
+int count_thin_facets(const MeshTopology& mesh, const MeshEdit& edit, double* min_new, double* min_input) {
+  int thin = 0;
+  auto made = [&](const Vec3& a, const Vec3& b, const Vec3& c) {
+    const double angle = smallest_angle_deg(a, b, c);
+    *min_new = std::min(*min_new, angle);
+    return angle < kThinDeg;
+  };
+  for (const auto& f : edit.added) thin += made(edit.point(f[0]), edit.point(f[1]), edit.point(f[2]));
+  for (int f : edit.removed) *min_input = std::min(*min_input, smallest_angle_deg(mesh.corner(f, 0), mesh.corner(f, 1), mesh.corner(f, 2)));
+  for (const auto& snapped : edit.moved)
+    for (const int* f = mesh.facets_begin(snapped.first); f != mesh.facets_end(snapped.first); ++f) {
+      if (edit.removed.count(*f)) continue;
+      const int a = mesh.F(*f, 0), b = mesh.F(*f, 1), c = mesh.F(*f, 2);
+      thin += made(edit.point(a), edit.point(b), edit.point(c));
+      *min_input = std::min(*min_input, smallest_angle_deg(mesh.corner(*f, 0), mesh.corner(*f, 1), mesh.corner(*f, 2)));
+    }
+  return thin;
+}
+
 // `split`: the mesh is the input already split along the chain's end segments (ends.h). `net`: its corners
 // with other chains of the call; `round_points` (if given) gets the round's vertices.
 RoundedChain round_one_chain(const MeshTopology& mesh, const Vec3& seed, const RoundOptions& opt, RoundReport& report,
@@ -351,22 +372,8 @@ RoundedChain round_one_chain(const MeshTopology& mesh, const Vec3& seed, const R
   out.chain = chain.points;
   if (!is_probe) out.brep = face_to_brep(surface.face);
 
-  // Facets made (or kept with a vertex snapped onto a trim line) against the input facets they replace.
   double min_new = 180, min_input = 180;
-  auto made = [&](const Vec3& a, const Vec3& b, const Vec3& c) {
-    const double angle = smallest_angle_deg(a, b, c);
-    min_new = std::min(min_new, angle);
-    return angle < kThinDeg;
-  };
-  for (const auto& f : edit.added) rep.thin_facets += made(edit.point(f[0]), edit.point(f[1]), edit.point(f[2]));
-  for (int f : edit.removed) min_input = std::min(min_input, smallest_angle_deg(mesh.corner(f, 0), mesh.corner(f, 1), mesh.corner(f, 2)));
-  for (const auto& snapped : edit.moved)
-    for (const int* f = mesh.facets_begin(snapped.first); f != mesh.facets_end(snapped.first); ++f) {
-      if (edit.removed.count(*f)) continue;
-      const int a = mesh.F(*f, 0), b = mesh.F(*f, 1), c = mesh.F(*f, 2);
-      rep.thin_facets += made(edit.point(a), edit.point(b), edit.point(c));
-      min_input = std::min(min_input, smallest_angle_deg(mesh.corner(*f, 0), mesh.corner(*f, 1), mesh.corner(*f, 2)));
-    }
+  rep.thin_facets = count_thin_facets(mesh, edit, &min_new, &min_input);
   // Thin facets the input does not explain: would a larger reach give them room? The chain is rounded
   // again (and thrown away) at each wider reach until one makes no facet under kThinDeg.
   if (!is_probe && rep.thin_facets > 0 && min_input >= kThinDeg) {
