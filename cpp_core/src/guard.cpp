@@ -86,6 +86,8 @@ bool coplanar_overlap(const Triangle& s, const Triangle& t) {
   return strictly_inside(sc, T) || strictly_inside(tc, S);
 }
 
+// Facets sharing a vertex or an edge are tested too: an edge through a shared vertex lies on the other
+// facet's plane there, so it cannot pierce; what crosses is an opposite edge, or a coplanar fold-over.
 bool triangles_cross(const Triangle& s, const Triangle& t, double slack) {
   bool coplanar = true;
   const double tn = t.normal.norm();
@@ -137,13 +139,6 @@ class FacetGrid {
   std::vector<int> oversized_;
 };
 
-bool share_vertex(const Facet& a, const Facet& b) {
-  for (int x : a)
-    for (int y : b)
-      if (x == y) return true;
-  return false;
-}
-
 // A made facet crossing another made facet, or a kept facet of `kept`: the place of the first found.
 bool find_crossing(const MeshEdit& edit, const std::vector<Facet>& kept, double slack, Vec3* where) {
   const std::vector<Facet>& made = edit.added;
@@ -167,7 +162,6 @@ bool find_crossing(const MeshEdit& edit, const std::vector<Facet>& kept, double 
     grid.query(lo, hi, [&](int j) {
       if (hit || size_t(j) == i || (size_t(j) < made.size() && size_t(j) < i)) return;
       if ((box[j].first.array() > hi.array()).any() || (box[j].second.array() < lo.array()).any()) return;
-      if (share_vertex(all[i], all[j])) return;
       if (tri[i].normal.squaredNorm() == 0 || tri[j].normal.squaredNorm() == 0) return;  // counted as degenerate
       hit = triangles_cross(tri[i], tri[j], slack);
     });

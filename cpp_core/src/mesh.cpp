@@ -180,7 +180,11 @@ double smallest_angle(const Vec3& a, const Vec3& b, const Vec3& c) {
     const double d = u.norm() * v.norm();
     return d > 0 ? std::acos(std::clamp(u.dot(v) / d, -1.0, 1.0)) : 0.0;
   };
-  return std::min({ang(b - a, c - a), ang(c - b, a - b), ang(a - c, b - c)});
+  // The smallest angle faces the shortest side.
+  const double ab = (b - a).squaredNorm(), bc = (c - b).squaredNorm(), ca = (a - c).squaredNorm();
+  if (bc <= ab && bc <= ca) return ang(b - a, c - a);
+  if (ca <= ab) return ang(c - b, a - b);
+  return ang(a - c, b - c);
 }
 
 Vec3 closest_point_on_segment(const Vec3& p, const Vec3& a, const Vec3& b, double* t) {

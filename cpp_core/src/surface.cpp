@@ -112,6 +112,7 @@ RoundingSurface loft_profiles(const std::vector<ProfileStation>& stations, bool 
   RoundingSurface out;
   out.closed = closed;
   out.surface = new Geom_BSplineSurface(poles, weights, uknots, vknots, umults, vmults, 3, 2, closed, false);
+  out.adaptor = new GeomAdaptor_Surface(out.surface);
   out.u_first = closed ? params.front() : params.front();
   out.u_last = closed ? params.front() + period : params.back();
   BRepBuilderAPI_MakeFace mk(out.surface, out.u_first, out.u_last, 0.0, 1.0, Precision::Confusion());
@@ -129,13 +130,13 @@ double RoundingSurface::wrap(double u) const {
 }
 
 Vec3 RoundingSurface::value(double u, double v) const {
-  return to_vec(surface->Value(wrap(u), v).XYZ());
+  return to_vec(adaptor->Value(wrap(u), v).XYZ());
 }
 
 void RoundingSurface::d1(double u, double v, Vec3& p, Vec3& du, Vec3& dv) const {
   gp_Pnt P;
   gp_Vec U, V;
-  surface->D1(wrap(u), v, P, U, V);
+  adaptor->D1(wrap(u), v, P, U, V);
   p = to_vec(P.XYZ()), du = to_vec(U.XYZ()), dv = to_vec(V.XYZ());
 }
 

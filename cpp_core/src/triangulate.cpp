@@ -25,7 +25,8 @@ Vec3 in_space(const std::vector<Vec3>& P, const std::vector<Eigen::Vector2d>& Q,
 
 // Lawson flips inside the polygon: an inner diagonal is flipped when the other diagonal of its (convex)
 // quadrilateral gives a larger smallest angle; the four edges around a flipped one are checked again.
-// Boundary edges never move.
+// Boundary edges never move. With `changed` (triangles just made in a flip-stable triangulation), only
+// their edges are checked at first; the triangles flipped are added to it.
 void improve_by_flips(const std::vector<Vec3>& P, const std::vector<Eigen::Vector2d>& Q, std::vector<std::array<int, 3>>& tris,
                       std::vector<int>* changed = nullptr) {
   auto key = [](int a, int b) { return std::uint64_t(std::min(a, b)) << 32 | std::uint32_t(std::max(a, b)); };
@@ -34,8 +35,12 @@ void improve_by_flips(const std::vector<Vec3>& P, const std::vector<Eigen::Vecto
   for (int t = 0; t < int(tris.size()); ++t)
     for (int k = 0; k < 3; ++k) {
       auto [it, fresh] = sides.try_emplace(key(tris[t][k], tris[t][(k + 1) % 3]), std::array<int, 2>{t, -1});
-      if (!fresh) it->second[1] = t, todo.push_back(it->first);
+      if (!fresh && !changed) it->second[1] = t, todo.push_back(it->first);
+      if (!fresh && changed) it->second[1] = t;
     }
+  if (changed)
+    for (int t : *changed)
+      for (int k = 0; k < 3; ++k) todo.push_back(key(tris[t][k], tris[t][(k + 1) % 3]));
   auto replace = [&](int a, int b, int from, int to) {
     auto& pair = sides.at(key(a, b));
     (pair[0] == from ? pair[0] : pair[1]) = to;
@@ -129,6 +134,7 @@ void add_inner_points(std::vector<Vec3>& P, std::vector<Eigen::Vector2d>& Q, std
     }
     return -1;
   };
+  improve_by_flips(P, Q, tris);  // flip-stable from here: each point's flips start at the triangles it makes
   std::vector<char> hopeless(tris.size(), 0);
   // Each triangle's smallest angle, kept up to date (only the triangles a point makes or flips change).
   auto angle_of = [&](int t) { return smallest_angle(P[tris[t][0]], P[tris[t][1]], P[tris[t][2]]); };
@@ -189,15 +195,26 @@ void add_inner_points(std::vector<Vec3>& P, std::vector<Eigen::Vector2d>& Q, std
 void smooth_inner_points(std::vector<Vec3>& P, std::vector<Eigen::Vector2d>& Q, std::vector<std::array<int, 3>>& tris,
                          size_t boundary, const Refinement& refine, const Vec3& e1, const Vec3& e2) {
   auto to_3d = [&](const Eigen::Vector2d& x) { return in_space(P, Q, e1, e2, x); };
+  improve_by_flips(P, Q, tris);  // flip-stable from here: each sweep's flips start around the points moved
+  // A point is tried again only when its star changed since it last stayed put (a point or a flip in it):
+  // the same star gives the same tries and the same answer.
+  std::vector<char> stale(Q.size(), 1);
+  const double gain = refine.smoothing_gain_deg * M_PI / 180;
   for (int sweep = 0; sweep < 16; ++sweep) {
     bool moved = false;
+    std::vector<std::vector<int>> stars(Q.size());  // the triangles around each point; no flips within a sweep
+    for (int t = 0; t < int(tris.size()); ++t)
+      for (int c = 0; c < 3; ++c) stars[tris[t][c]].push_back(t);
+    std::vector<int> touched;  // the triangles around the points moved, then those flipped
     for (size_t k = boundary; k < Q.size(); ++k) {
+      if (!stale[k]) continue;
+      stale[k] = 0;
       poll_cancel();
-      std::vector<int> star;
+      const std::vector<int>& star = stars[k];
       Eigen::Vector2d centre = Eigen::Vector2d::Zero();
-      for (int t = 0; t < int(tris.size()); ++t)
+      for (int t : star)
         for (int c = 0; c < 3; ++c)
-          if (tris[t][c] == int(k)) star.push_back(t), centre += Q[tris[t][(c + 1) % 3]] + Q[tris[t][(c + 2) % 3]];
+          if (tris[t][c] == int(k)) centre += Q[tris[t][(c + 1) % 3]] + Q[tris[t][(c + 2) % 3]];
       if (star.empty()) continue;
       centre /= 2.0 * star.size();  // each neighbour is counted twice around an inner point
       auto star_quality = [&]() {
@@ -210,7 +227,8 @@ void smooth_inner_points(std::vector<Vec3>& P, std::vector<Eigen::Vector2d>& Q, 
         return q;
       };
       double best = star_quality();
-      Eigen::Vector2d best_q = Q[k];
+      const Eigen::Vector2d start = Q[k];
+      Eigen::Vector2d best_q = start;
       std::vector<Eigen::Vector2d> tries;
       for (double step : {1.0, 0.5, 0.25}) tries.push_back(Q[k] + step * (centre - Q[k]));
       double reach = INFINITY;  // then a compass search, in steps of the star's size
@@ -223,12 +241,19 @@ void smooth_inner_points(std::vector<Vec3>& P, std::vector<Eigen::Vector2d>& Q, 
         if (refine.admit && !refine.admit(to_3d(x))) continue;
         Q[k] = x, P[k] = to_3d(x);
         const double q = star_quality();
-        if (q > best + 1e-9) best = q, best_q = x, moved = true;
+        if (q > best + gain) best = q, best_q = x, moved = true;
+      }
+      if (best_q != start) {
+        touched.insert(touched.end(), star.begin(), star.end());
+        for (int t : star)
+          for (int v : tris[t]) stale[v] = 1;
       }
       Q[k] = best_q, P[k] = to_3d(best_q);
     }
     if (!moved) return;
-    improve_by_flips(P, Q, tris);
+    improve_by_flips(P, Q, tris, &touched);
+    for (int t : touched)
+      for (int v : tris[t]) stale[v] = 1;
   }
 }
 
@@ -237,6 +262,20 @@ void smooth_inner_points(std::vector<Vec3>& P, std::vector<Eigen::Vector2d>& Q, 
 std::vector<std::array<int, 3>> clip_ears(const std::vector<Vec3>& P, const std::vector<Eigen::Vector2d>& Q, size_t boundary) {
   std::vector<int> idx(boundary);
   for (size_t i = 0; i < idx.size(); ++i) idx[i] = int(i);
+  // Each corner's state, kept between cuts: cutting corner b changes only its two neighbours' ears and
+  // those ears b itself blocked (a blocker stays a blocker while it is on the ring).
+  enum : int { kUnknown = -2, kNoEar = -1 };
+  std::vector<int> blocker(boundary, kUnknown);  // kNoEar (reflex or flat), a blocking point, or boundary (an ear)
+  std::vector<double> quality(boundary, -1);
+  auto judge = [&](int i) {
+    const int m = int(idx.size());
+    const int a = idx[(i + m - 1) % m], b = idx[i], c = idx[(i + 1) % m];
+    const auto &qa = Q[a], &qb = Q[b], &qc = Q[c];
+    if (cross2(qa, qb, qc) <= 1e-9 * (qb - qa).norm() * (qc - qb).norm()) return void(blocker[b] = kNoEar);
+    for (int w : idx)
+      if (w != a && w != b && w != c && blocks_ear(Q[w], qa, qb, qc)) return void(blocker[b] = w);
+    blocker[b] = int(boundary), quality[b] = smallest_angle(P[a], P[b], P[c]);
+  };
   std::vector<std::array<int, 3>> tris;
   while (idx.size() > 3) {
     poll_cancel();
@@ -244,18 +283,8 @@ std::vector<std::array<int, 3>> clip_ears(const std::vector<Vec3>& P, const std:
     double best_q = -1;
     const int m = int(idx.size());
     for (int i = 0; i < m; ++i) {
-      const int a = idx[(i + m - 1) % m], b = idx[i], c = idx[(i + 1) % m];
-      const auto &qa = Q[a], &qb = Q[b], &qc = Q[c];
-      if (cross2(qa, qb, qc) <= 1e-9 * (qb - qa).norm() * (qc - qb).norm()) continue;  // reflex or flat: no ear
-      bool empty = true;
-      for (int j = 0; j < m && empty; ++j) {
-        const int w = idx[j];
-        if (w == a || w == b || w == c) continue;
-        empty = !blocks_ear(Q[w], qa, qb, qc);
-      }
-      if (!empty) continue;
-      const double q = smallest_angle(P[a], P[b], P[c]);
-      if (q > best_q) best_q = q, best = i;
+      if (blocker[idx[i]] == kUnknown) judge(i);
+      if (blocker[idx[i]] == int(boundary) && quality[idx[i]] > best_q) best_q = quality[idx[i]], best = i;
     }
     if (best < 0) {
       // Numerically degenerate polygon: cut the flattest corner so the loop still closes.
@@ -265,8 +294,12 @@ std::vector<std::array<int, 3>> clip_ears(const std::vector<Vec3>& P, const std:
       }
       best = 0;
     }
-    tris.push_back({idx[(best + m - 1) % m], idx[best], idx[(best + 1) % m]});
+    const int cut = idx[best];
+    tris.push_back({idx[(best + m - 1) % m], cut, idx[(best + 1) % m]});
     idx.erase(idx.begin() + best);
+    blocker[idx[(best + m - 2) % (m - 1)]] = blocker[idx[best % (m - 1)]] = kUnknown;
+    for (int w : idx)
+      if (blocker[w] == cut) blocker[w] = kUnknown;
   }
   tris.push_back({idx[0], idx[1], idx[2]});
   improve_by_flips(P, Q, tris);

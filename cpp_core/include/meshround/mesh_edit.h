@@ -48,6 +48,8 @@ struct Refinement {
   std::function<bool(const Vec3&)> admit;  // optional: where points may go
   double flat_tolerance = 0;               // a polygon this close to a plane still gets points (in that
                                            // plane): an end face meeting a variable round's tilted end
+  double smoothing_gain_deg = 0.01;        // an inner point moves only if that raises the smallest angle
+                                           // around it by more than this
 };
 
 // Triangulates a simple polygon (vertex ids, in order) in the plane with normal `normal`: ear clipping

@@ -1,6 +1,7 @@
 // Paper §4.4-4.5: exact circular profiles as rational quadratic NURBS, lofted into one OCCT B-spline
 // surface per chain (cubic along the spine, rational quadratic across; periodic for a closed loop).
 #pragma once
+#include <GeomAdaptor_Surface.hxx>
 #include <Geom_BSplineSurface.hxx>
 #include <TopoDS_Face.hxx>
 #include <string>
@@ -20,6 +21,10 @@ struct RoundingSurface {
   // Point, d/du and d/dv.
   void d1(double u, double v, Vec3& p, Vec3& du, Vec3& dv) const;
   double wrap(double u) const;  // into [u_first, u_last) for a closed surface, clamped otherwise
+
+  // Evaluation through OCCT's adaptor, which keeps the current span's polynomial cached (the surface's
+  // own D0 / D1 walk its knot list on every call: slow on a long chain's thousands of stations).
+  Handle(GeomAdaptor_Surface) adaptor;
 };
 
 // Rational quadratic Bezier of the circular arc from contact A to contact B about the centre:
