@@ -223,7 +223,22 @@ std::vector<EndSegment> end_segments(const MeshTopology& mesh, const SharpChain&
       bool goes_on = false;
       for (int f : base.facets[side])
         for (int k = 0; k < 3 && !goes_on; ++k) goes_on = st.cut.past(mesh.corner(f, k)) > slack;
-      if (goes_on) out.push_back({st.cut, v, corner, base.facets[side]});
+      if (!goes_on) continue;
+      EndSegment seg{st.cut, v, mesh.point(v), {-1, -1}, corner, base.facets[side]};
+      if (std::abs(st.cut.past(mesh.point(v))) > slack) {  // the plane crosses the chain short of its end
+        const int n = int(chain.vertices.size());
+        for (int i = 0; i + 1 < n; ++i) {
+          const int a = chain.vertices[end ? n - 1 - i : i], b = chain.vertices[end ? n - 2 - i : i + 1];
+          const double da = st.cut.past(mesh.point(a)), db = st.cut.past(mesh.point(b));
+          if (std::abs(db) <= slack) { seg.end_vertex = b, seg.start = mesh.point(b); break; }
+          if ((da > 0) != (db > 0)) {
+            seg.start = mesh.point(a) + (mesh.point(b) - mesh.point(a)) * (da / (da - db));
+            seg.edge[0] = a, seg.edge[1] = b;
+            break;
+          }
+        }
+      }
+      out.push_back(seg);
     }
   }
   return out;
@@ -236,13 +251,38 @@ bool split_along_end_segments(const MeshTopology& mesh, const std::vector<EndSeg
   m.tris.reserve(size_t(mesh.num_facets()) + 64);
   for (int f = 0; f < mesh.num_facets(); ++f) m.tris.push_back({mesh.F(f, 0), mesh.F(f, 1), mesh.F(f, 2)});
   m.gone.assign(m.tris.size(), 0);
+  std::unordered_map<std::uint64_t, int> on_chain;  // chain edge -> the vertex put on it
+  std::unordered_map<int, std::array<int, 2>> pieces_of;  // a facet on a split chain edge -> its two pieces
   for (const EndSegment& seg : segments) {
-    const double slack = on_plane_slack((seg.corner - mesh.point(seg.end_vertex)).norm(), seg.corner.cwiseAbs().maxCoeff());
+    const double slack = on_plane_slack((seg.corner - seg.start).norm(), seg.corner.cwiseAbs().maxCoeff());
     std::vector<int> facets = seg.facets;
-    snap_onto_plane(m, mesh, facets, seg.cut, seg.end_vertex, mesh.point(seg.end_vertex), seg.corner, slack);
+    int p = seg.end_vertex;
+    if (seg.edge[0] >= 0) {  // the chain edge split where the plane crosses it, on both sides
+      auto [it, fresh] = on_chain.try_emplace(edge_key(seg.edge[0], seg.edge[1]), -1);
+      if (fresh) {
+        it->second = m.add(seg.start);
+        for (size_t t = 0, count = m.tris.size(); t < count; ++t) {
+          if (m.gone[t]) continue;
+          const auto g = m.tris[t];
+          for (int j = 0; j < 3; ++j) {
+            const int a = g[j], b = g[(j + 1) % 3];
+            if (edge_key(a, b) != edge_key(seg.edge[0], seg.edge[1])) continue;
+            m.replace(int(t), {{a, it->second, g[(j + 2) % 3]}, {it->second, b, g[(j + 2) % 3]}});
+            pieces_of[int(t)] = {int(m.tris.size()) - 2, int(m.tris.size()) - 1};
+            break;
+          }
+        }
+      }
+      p = it->second;
+      for (int f : seg.facets) {  // the pieces of this side's facets join its list
+        auto split = pieces_of.find(f);
+        if (split != pieces_of.end()) facets.insert(facets.end(), split->second.begin(), split->second.end());
+      }
+    }
+    snap_onto_plane(m, mesh, facets, seg.cut, p, m.points[p], seg.corner, slack);
     const int q = insert_corner(m, mesh, facets, seg.corner, slack);
-    if (q < 0 || q == seg.end_vertex) continue;
-    split_crossed(m, facets, seg.cut, seg.end_vertex, q, slack);
+    if (q < 0 || q == p) continue;
+    split_crossed(m, facets, seg.cut, p, q, slack);
   }
   const bool changed = m.points.size() > size_t(mesh.num_vertices()) ||
                        std::any_of(m.gone.begin(), m.gone.end(), [](char g) { return g != 0; });

@@ -30,6 +30,10 @@ double end_cut_setback(const ProfileStation& inside, double to_end, const EndCut
 struct EndSegment {
   EndCut cut;
   int end_vertex = -1;     // the chain's vertex at that end
+  // Where the segment starts on the chain: the end vertex when the plane passes through it; else (a sphere
+  // corner's plane, across the chain short of its end) the point on chain edge (edge[0], edge[1]).
+  Vec3 start;
+  int edge[2] = {-1, -1};
   Vec3 corner;             // where the round's side meets the plane (the surface's corner)
   std::vector<int> facets; // the side's base facets near the segment
 };

@@ -8,6 +8,7 @@
 
 #include "ends.h"
 #include "guard.h"
+#include "sphere_corner.h"
 #include "meshround/cancel.h"
 #include "meshround/radius_law.h"
 #include "meshround/improve.h"
@@ -143,6 +144,8 @@ std::vector<ProfileStation> sample_profiles(const SpineContext& ctx, const Radiu
 struct CornerEnd {
   Vec3 point, normal;
   bool other_made = false;
+  Vec3 plane_point = point;  // the plane's point: the vertex for a mitre, the ball's centre at a sphere corner
+  bool sphere = false;       // one of three rounds at the vertex (sphere_corner.h)
 };
 struct NetworkPart {
   std::vector<CornerEnd> corners;
@@ -171,7 +174,7 @@ std::vector<ProfileStation> end_cut_profiles(const SpineContext& ctx, const Radi
     const CornerEnd* corner = corner_at(net, end ? chain.points.back() : chain.points.front());
     if (corner) {
       const Vec3 out = end ? chain.tangent_at(L) : Vec3(-chain.tangent_at(0));
-      cut[end] = EndCut{true, corner->point, out.dot(corner->normal) > 0 ? corner->normal : Vec3(-corner->normal), out};
+      cut[end] = EndCut{true, corner->plane_point, out.dot(corner->normal) > 0 ? corner->normal : Vec3(-corner->normal), out};
     }
     if (!cut[end].active) continue;
     // Measured on a ball clear of the end face (the one at the end may already lean on it).
@@ -180,7 +183,7 @@ std::vector<ProfileStation> end_cut_profiles(const SpineContext& ctx, const Radi
     // A mitre that cuts back into the rounds (two convex edges meeting, the third edge kept sharp): its
     // rows would have to stop at a different length on each side of the profile, which one lofted
     // surface of this kind does not hold.
-    if (corner && setback[end] > 0)
+    if (corner && !corner->sphere && setback[end] > 0)
       throw RoundingError(ErrorCode::CornerNotBlendable, "the rounds that meet at " + format_point(corner->point) + " would be cut back by "
                           "their mitre (its plane leans over them: a convex corner whose third edge stays sharp, or drafted walls): that corner is "
                           "not made yet; round one of those chains");
@@ -320,7 +323,7 @@ RoundedChain round_one_chain(const MeshTopology& mesh, const Vec3& seed, const R
   SharedEnds shared;
   for (int end = 0; end < 2 && !chain.closed; ++end) {
     const CornerEnd* c = corner_at(net, end ? chain.points.back() : chain.points.front());
-    shared.no_graded_rows |= c != nullptr;  // both rounds at a corner make the same rows
+    shared.no_graded_rows |= c != nullptr && !c->sphere;  // both rounds at a mitre make the same rows
     shared.at[end] = c && c->other_made;
   }
   const double weld = 1e-6 * tol;
@@ -431,6 +434,68 @@ std::vector<RoundOptions> options_per_chain(const RoundOptions& opt, const std::
   return out;
 }
 
+// The thin facets (and the smallest angle) among the result's facets that are not the input's, counted
+// anew after a pass that replaces facets the rounds made (the sphere corners' patches).
+void recount_new_facets(const Points& V, const Triangles& F, const Points& out_V, const Triangles& out_F, RoundReport& report) {
+  auto corners = [](const Points& P, const Triangles& T, Eigen::Index f) {
+    std::array<std::array<double, 3>, 3> c;
+    for (int k = 0; k < 3; ++k) c[k] = {P(T(f, k), 0), P(T(f, k), 1), P(T(f, k), 2)};
+    std::rotate(c.begin(), std::min_element(c.begin(), c.end()), c.end());
+    return c;
+  };
+  std::set<std::array<std::array<double, 3>, 3>> input;
+  for (Eigen::Index f = 0; f < F.rows(); ++f) input.insert(corners(V, F, f));
+  int thin = 0;
+  double smallest = 180;
+  for (Eigen::Index f = 0; f < out_F.rows(); ++f) {
+    if (input.count(corners(out_V, out_F, f))) continue;
+    const double a = smallest_angle_deg(out_V.row(out_F(f, 0)).transpose(), out_V.row(out_F(f, 1)).transpose(), out_V.row(out_F(f, 2)).transpose());
+    thin += a < kThinDeg, smallest = std::min(smallest, a);
+  }
+  report.thin_facets = thin, report.min_new_angle_deg = smallest;
+}
+
+// Three picked chains ending at vertex v (chains `ids`): their three faces there (each chain's two sides,
+// paired up), the convexity all three share, and the ball touching the three faces.
+SphereCorner three_round_corner(const MeshTopology& input, const std::vector<SharpChain>& chains, const std::array<size_t, 3>& ids,
+                                int v, const RoundOptions& opt, const Vec3& picked) {
+  SphereCorner corner;
+  corner.vertex = input.point(v);
+  auto refuse = [&](const std::string& why) {
+    throw RoundingError(ErrorCode::CornerNotBlendable, "the three chains picked at and around " + format_point(picked) + " meet at " +
+                        format_point(corner.vertex) + ": " + why);
+  };
+  if (!opt.radius_law.empty()) refuse("variable radii into a corner are not blended yet");
+  corner.radius = opt.radius;
+  std::vector<Vec3> normals;  // the faces at the vertex, one normal each
+  const double same = std::cos(opt.feature_angle_deg * M_PI / 180);
+  int convex = 0;
+  for (int i = 0; i < 3; ++i) {
+    const SharpChain& c = chains[ids[i]];
+    const bool at_start = c.vertices.front() == v;
+    const int next = at_start ? c.vertices[1] : c.vertices[c.vertices.size() - 2];
+    corner.toward[i] = (input.point(v) - input.point(next)).normalized();
+    const std::vector<int> sides = input.edge_facets(v, next);
+    if (sides.size() != 2) refuse("an edge there has " + std::to_string(sides.size()) + " facets");
+    Vec3 n[2];
+    for (int k = 0; k < 2; ++k) {
+      n[k] = input.facet_normal(sides[k]);
+      if (std::none_of(normals.begin(), normals.end(), [&](const Vec3& m) { return m.dot(n[k]) > same; })) normals.push_back(n[k]);
+    }
+    int third = 0;  // the corner of sides[0] off the edge: behind the other side's plane on a convex edge
+    while (input.F(sides[0], third) == v || input.F(sides[0], third) == next) ++third;
+    convex += (input.corner(sides[0], third) - input.point(v)).dot(n[1]) < 0 ? 1 : -1;
+  }
+  if (normals.size() != 3) refuse(std::to_string(normals.size()) + " faces meet there, not three");
+  if (std::abs(convex) != 3) refuse("convex and concave edges mixed at one corner are not blended yet");
+  const Vec3 points[3] = {corner.vertex, corner.vertex, corner.vertex};
+  const Vec3 n3[3] = {normals[0], normals[1], normals[2]};
+  if (!corner_ball(points, n3, corner.radius, convex > 0, &corner.centre, corner.feet)) refuse("its faces do not meet in one point");
+  for (const Vec3& t : corner.toward)
+    if ((corner.vertex - corner.centre).dot(t) <= 0) refuse("the ball touching its three faces lies beyond a chain's end");
+  return corner;
+}
+
 // The corners where picked chains meet: a vertex where exactly two of them end is blended by a miter, as
 // OCCT blends two rounds meeting where a third edge stays sharp: both rounds run on to the plane through
 // the vertex bisecting the two chains and stop there, meeting along one curve (exact when their radii
@@ -438,7 +503,7 @@ std::vector<RoundOptions> options_per_chain(const RoundOptions& opt, const std::
 // the call is refused, naming the corner). Three or more rounds at a vertex, a chain running on through
 // another's end, and variable radii into a corner are refused, naming the vertex.
 std::vector<NetworkPart> find_corners(const MeshTopology& input, const std::vector<SharpChain>& chains, const std::vector<Vec3>& picked,
-                                      const RoundOptions& opt) {
+                                      const RoundOptions& opt, std::vector<std::pair<SphereCorner, size_t>>* spheres) {
   std::vector<NetworkPart> out(chains.size());
   auto into = [](const SharpChain& c, bool at_start) {
     const size_t n = c.points.size();
@@ -458,9 +523,18 @@ std::vector<NetworkPart> find_corners(const MeshTopology& input, const std::vect
         others.push_back({j, j_start});
       }
       if (others.empty()) continue;
-      if (others.size() > 1)
+      if (others.size() > 2)
         throw RoundingError(ErrorCode::CornerNotBlendable, std::to_string(others.size() + 1) + " of the picked chains meet at " + format_point(input.point(v)) +
-                            ": corners of three or more rounds are not made yet (round fewer of them there)");
+                            ": corners of four or more rounds are not made yet (round fewer of them there)");
+      if (others.size() == 2) {
+        const SphereCorner corner = three_round_corner(input, chains, {k, others[0].first, others[1].first}, v, opt, picked[k]);
+        if (std::none_of(spheres->begin(), spheres->end(), [&](const auto& c) { return c.first.vertex == corner.vertex; }))
+          spheres->push_back({corner, k});
+        CornerEnd end{input.point(v), into(chains[k], at_start), false};
+        end.plane_point = corner.centre, end.sphere = true;
+        out[k].corners.push_back(end);
+        continue;
+      }
       if (!opt.radius_law.empty())
         throw RoundingError(ErrorCode::CornerNotBlendable, "the chains picked at " + format_point(picked[k]) + " and " + format_point(picked[others[0].first]) +
                             " meet at " + format_point(input.point(v)) + ": variable radii into a corner are not blended yet");
@@ -518,7 +592,8 @@ RoundResult round_edges(const Points& V, const Triangles& F, const std::vector<V
     chains.push_back(std::move(c));
   }
   const std::vector<RoundOptions> chain_options = options_per_chain(opt, chains, picked);
-  std::vector<NetworkPart> network = find_corners(input, chains, picked, opt);
+  std::vector<std::pair<SphereCorner, size_t>> spheres;  // each with a chain that ends there
+  std::vector<NetworkPart> network = find_corners(input, chains, picked, opt, &spheres);
   std::vector<Vec3> made_points;  // the vertices of the rounds made so far (kept only where a corner needs them)
   Points cur_V;
   Triangles cur_F;
@@ -527,7 +602,8 @@ RoundResult round_edges(const Points& V, const Triangles& F, const std::vector<V
     Points next_V;
     Triangles next_F;
     NetworkPart& net = network[k];
-    if (std::any_of(net.corners.begin(), net.corners.end(), [](const CornerEnd& c) { return c.other_made; })) net.earlier_round_points = made_points;
+    if (std::any_of(net.corners.begin(), net.corners.end(), [](const CornerEnd& c) { return c.other_made || c.sphere; }))
+      net.earlier_round_points = made_points;
     std::vector<Vec3>* keep = network.size() > 1 && !net.corners.empty() ? &made_points : nullptr;
     if (k == 0) {
       result.chains.push_back(round_one_chain(input, chain_seeds[k], chain_options[k], result.report, next_V, next_F, net, keep));
@@ -538,6 +614,16 @@ RoundResult round_edges(const Points& V, const Triangles& F, const std::vector<V
     cur_V.swap(next_V);
     cur_F.swap(next_F);
   }
+  for (const auto& [corner, k] : spheres) {  // the rounds made, the ball between their ends (sphere_corner.h)
+    poll_cancel();
+    const double tol = chain_options[k].tolerance > 0 ? chain_options[k].tolerance : corner.radius / 100.0;
+    Points next_V;
+    Triangles next_F;
+    blend_sphere_corner(cur_V, cur_F, corner, tol, chains[k], chain_options[k].reach * corner.radius, next_V, next_F);
+    cur_V.swap(next_V);
+    cur_F.swap(next_F);
+  }
+  if (!spheres.empty()) recount_new_facets(V, F, cur_V, cur_F, result.report);  // the patches replaced end caps
   result.vertices.swap(cur_V);
   result.triangles.swap(cur_F);
   RoundReport& rep = result.report;

@@ -157,6 +157,14 @@ def box_oblique_end():
     return s, edges_where(s, lambda p: abs(p.y - 40) < TOL and abs(p.z - 30) < TOL)
 
 
+def box_corner():
+    """A box corner with its three edges rounded: equal radii meet in a patch of the rolling ball (the
+    three edges at (100, 60, 40) of a 100 x 60 x 40 box, each running its whole length)."""
+    s = Part.makeBox(100, 60, 40)
+    at = V(100, 60, 40)
+    return s, [e for e in s.Edges if any((v.Point - at).Length < TOL for v in e.Vertexes)]
+
+
 def s_outline():
     """Plan view S: line, convex arc R20, concave arc R30, line -- tangent throughout, from (0,60) to (120,10)."""
     return Part.Wire([
@@ -261,8 +269,13 @@ class Case:
         self.law = law
         self.r_max = radius if law is None else max(r for _, r in law)
         self.tolerance = self.r_max / 100
-        self.points = chain_points(self.chain, 0.02 * self.r_max)  # the chain, densely, in order
-        self.closed = is_closed(self.chain)
+        try:
+            self.points = chain_points(self.chain, 0.02 * self.r_max)  # the chain, densely, in order
+            self.network = False
+        except ValueError:  # edges meeting at a vertex, not one chain: each edge is a chain of its own
+            self.points = np.concatenate([chain_points([e], 0.02 * self.r_max) for e in self.chain])
+            self.network = True
+        self.closed = not self.network and is_closed(self.chain)
         self.reference = self._occt_fillet(radius)
         self.rounds = fillet_faces(self.reference, self.solid)
         if law is None:
@@ -282,13 +295,15 @@ class Case:
     def seeds(self):
         """What a user picks: one point, or where the chain's edges meet at corners (a turn sharper
         than the feature angle), the middle of every edge: each is a chain of its own, rounded together."""
-        if len(self.chain) > 1 and self.corners:
+        if self.network or (len(self.chain) > 1 and self.corners):
             return [e.valueAt(0.5 * (e.FirstParameter + e.LastParameter)) for e in self.chain]
         return [self.seed]
 
     @property
     def corners(self):
-        """True when consecutive edges of the chain meet at an angle (not tangent)."""
+        """True when consecutive edges of the chain meet at an angle (not tangent), or edges meet at a vertex."""
+        if self.network:
+            return True
         ordered = ordered_chain(self.chain)
         for (a, ra), (b, rb) in zip(ordered, ordered[1:] + (ordered[:1] if self.closed else [])):
             ta = a.tangentAt(a.FirstParameter if ra else a.LastParameter) * (-1 if ra else 1)
@@ -374,6 +389,7 @@ SPECS = {
     "pocket_edge_draft": (pocket_edge(10.0), 2.0, None),
     "box_oblique_end": (box_oblique_end, 4.0, None),
     "pocket_rim_square": (pocket_rim_square(), 2.0, None),
+    "box_corner": (box_corner, 5.0, None),
     "box_var": (box, None, [(0.0, 2.0), (1.0, 8.0)]),
     "lchannel_var": (lchannel, None, [(0.0, 2.0), (1.0, 6.0)]),
     "s_chain_var3": (s_plate, None, [(0.0, 2.5), (0.5, 5.0), (1.0, 3.0)]),

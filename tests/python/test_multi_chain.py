@@ -60,10 +60,28 @@ def test_chains_meeting_at_a_corner_are_refused_and_the_input_kept(box):
     assert np.array_equal(before[0], after[0]) and np.array_equal(before[1], after[1])
 
 
-def test_three_rounds_at_a_corner_are_refused_naming_it(box):
-    seeds = [BOX_SEED, V(X, Y / 2, Z), V(X, Y, Z / 2)]  # the three edges at the box corner (X, Y, Z)
-    with pytest.raises(MeshRound.RoundingError, match=r"3 of the picked chains meet at \(100, 60, 40\)") as refused:
-        MeshRound.round_edges(box, seeds, 3.0)
+def test_three_rounds_at_a_corner_meet_in_the_corner_ball(box):
+    # The three edges at the box corner (X, Y, Z), r = 3: the corner is the ball touching the three faces,
+    # centred r inside each of them; every vertex near the corner lies on that ball or on the rounds' cylinders.
+    r = 3.0
+    seeds = [BOX_SEED, V(X, Y / 2, Z), V(X, Y, Z / 2)]
+    res = MeshRound.round_edges(box, seeds, r)
+    out = res.mesh
+    assert out.isSolid() and not out.hasNonManifolds() and not out.hasSelfIntersections()
+    centre = np.array([X - r, Y - r, Z - r])
+    pts = np.array([[p.x, p.y, p.z] for p in out.Points])
+    f32 = 2e-5  # a Mesh.Mesh keeps float32 coordinates: ~1e-5 mm at 100 mm
+    in_cell = np.all(pts >= centre - f32, axis=1)  # beyond all three rounds' end planes
+    assert in_cell.sum() > 10
+    assert np.abs(np.linalg.norm(pts[in_cell] - centre, axis=1) - r).max() < f32
+    assert not np.any(np.all(pts > centre + f32, axis=1) & (np.linalg.norm(pts - centre, axis=1) > r + f32))
+
+
+def test_a_radius_law_into_a_three_round_corner_is_refused_naming_it(box):
+    seeds = [BOX_SEED, V(X, Y / 2, Z), V(X, Y, Z / 2)]
+    law = [(V(0, Y, Z), 3.0), (V(X, Y, Z), 4.0), (V(X, 0, Z), 3.0), (V(X, Y, 0), 3.0)]
+    with pytest.raises(MeshRound.RoundingError, match=r"meet at \(100, 60, 40\)") as refused:
+        MeshRound.round_edges(box, seeds, law)
     assert refused.value.code == "corner_not_blendable"
 
 

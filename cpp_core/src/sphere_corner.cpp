@@ -1,0 +1,222 @@
+#include "sphere_corner.h"
+
+#include <Eigen/Dense>
+#include <algorithm>
+#include <cmath>
+#include <unordered_map>
+#include <unordered_set>
+#include <vector>
+
+#include "guard.h"
+#include "meshround/mesh_edit.h"
+#include "meshround/sew.h"
+
+namespace meshround {
+
+bool corner_ball(const Vec3 points[3], const Vec3 normals[3], double radius, bool convex, Vec3* centre, Vec3 feet[3]) {
+  Eigen::Matrix3d N;
+  Vec3 rhs;
+  for (int i = 0; i < 3; ++i) N.row(i) = normals[i].transpose(), rhs[i] = normals[i].dot(points[i]) + (convex ? -radius : radius);
+  if (std::abs(N.determinant()) < 1e-6) return false;
+  *centre = N.partialPivLu().solve(rhs);
+  for (int i = 0; i < 3; ++i) feet[i] = *centre + (convex ? radius : -radius) * normals[i];
+  return true;
+}
+
+namespace {
+
+[[noreturn]] void not_blendable(const SphereCorner& c, const std::string& why) {
+  throw RoundingError(ErrorCode::CornerNotBlendable, "the three rounds at " + format_point(c.vertex) + " cannot be blended: " + why);
+}
+
+// The facets between the three rounds' end planes and the vertex, reached from the vertex.
+std::unordered_set<int> corner_facets(const MeshTopology& mesh, const SphereCorner& c, int vertex) {
+  const double slack = 1e-4 * c.radius;
+  auto inside = [&](int v) {
+    for (const Vec3& t : c.toward)
+      if ((mesh.point(v) - c.centre).dot(t) < -slack) return false;
+    return true;
+  };
+  std::unordered_set<int> region;
+  std::vector<int> todo{vertex};
+  std::unordered_set<int> seen{vertex};
+  while (!todo.empty()) {
+    const int v = todo.back();
+    todo.pop_back();
+    for (const int* f = mesh.facets_begin(v); f != mesh.facets_end(v); ++f) {
+      if (region.count(*f) || !inside(mesh.F(*f, 0)) || !inside(mesh.F(*f, 1)) || !inside(mesh.F(*f, 2))) continue;
+      region.insert(*f);
+      for (int k = 0; k < 3; ++k)
+        if (seen.insert(mesh.F(*f, k)).second) todo.push_back(mesh.F(*f, k));
+    }
+  }
+  return region;
+}
+
+// The hole the region leaves, in the region's own orientation (the patch runs its edges the same way).
+std::vector<int> hole_loop(const MeshTopology& mesh, const std::unordered_set<int>& region, const SphereCorner& c) {
+  std::unordered_map<int, int> next;
+  for (int f : region)
+    for (int k = 0; k < 3; ++k) {
+      const int a = mesh.F(f, k), b = mesh.F(f, (k + 1) % 3);
+      bool inner = false;
+      for (int g : mesh.edge_facets(a, b)) inner |= g != f && region.count(g);
+      if (inner) continue;
+      if (!next.emplace(a, b).second) not_blendable(c, "the corner's boundary touches itself at " + format_point(mesh.point(a)));
+    }
+  if (next.empty()) not_blendable(c, "no corner between the rounds' ends");
+  std::vector<int> loop{next.begin()->first};
+  while (true) {
+    const int b = next.at(loop.back());
+    if (b == loop.front()) break;
+    if (loop.size() > next.size()) not_blendable(c, "the corner's boundary does not close");
+    loop.push_back(b);
+  }
+  if (loop.size() != next.size()) not_blendable(c, "the corner between the rounds is not one hole");
+  return loop;
+}
+
+// Longest-edge bisection of the inner edges longer than `longest` (the hole's own sides stay: they are
+// the rounds'), each new point put on the ball.
+void refine_on_ball(MeshEdit& edit, std::vector<std::array<int, 3>>& tris, const std::unordered_set<std::uint64_t>& sides,
+                    const SphereCorner& c, double longest) {
+  auto length = [&](int a, int b) { return (edit.point(a) - edit.point(b)).norm(); };
+  for (bool split = true; split;) {
+    split = false;
+    std::unordered_map<std::uint64_t, std::vector<int>> by_edge;
+    for (int t = 0; t < int(tris.size()); ++t)
+      for (int k = 0; k < 3; ++k) by_edge[edge_key(tris[t][k], tris[t][(k + 1) % 3])].push_back(t);
+    std::vector<char> touched(tris.size(), 0);
+    const size_t n = tris.size();
+    for (size_t t = 0; t < n; ++t) {
+      if (touched[t]) continue;
+      int k = 0;  // the triangle's longest side
+      for (int j = 1; j < 3; ++j)
+        if (length(tris[t][j], tris[t][(j + 1) % 3]) > length(tris[t][k], tris[t][(k + 1) % 3])) k = j;
+      const int a = tris[t][k], b = tris[t][(k + 1) % 3];
+      const std::uint64_t key = edge_key(a, b);
+      if (sides.count(key) || length(a, b) <= longest) continue;
+      const std::vector<int>& two = by_edge[key];
+      if (std::any_of(two.begin(), two.end(), [&](int u) { return touched[u]; })) continue;
+      const Vec3 mid = c.centre + c.radius * (0.5 * (edit.point(a) + edit.point(b)) - c.centre).normalized();
+      const int m = edit.add_point(mid);
+      for (int u : two) {
+        auto& tri = tris[u];
+        int j = 0;
+        while (edge_key(tri[j], tri[(j + 1) % 3]) != key) ++j;
+        const std::array<int, 3> old = tri;
+        tri = {old[j], m, old[(j + 2) % 3]};
+        tris.push_back({m, old[(j + 1) % 3], old[(j + 2) % 3]});
+        touched[u] = 1;
+      }
+      split = true;
+    }
+  }
+}
+
+// The patch as rows of points from the side `base` (the loop from feet[0] to feet[1]) to the apex feet[2],
+// when the two other sides have one count of segments: row j runs on the great circle between the j-th
+// points of those sides, with a count of segments going down from the base's to one; neighbouring rows
+// are zipped into triangles. False (nothing made) when the two sides' counts differ.
+bool rows_to_apex(MeshEdit& edit, const std::vector<int>& loop, const int at[3], const SphereCorner& c,
+                  std::vector<std::array<int, 3>>& tris) {
+  const int n = int(loop.size());
+  auto side = [&](int from, int to) {  // loop ids from corner `from` to corner `to`, both included
+    std::vector<int> out;
+    for (int i = at[from];; i = (i + 1) % n) {
+      out.push_back(loop[i]);
+      if (i == at[to]) break;
+    }
+    return out;
+  };
+  const std::vector<int> base = side(0, 1), right = side(1, 2);
+  std::vector<int> left = side(2, 0);
+  std::reverse(left.begin(), left.end());  // feet[0] -> apex, like `right`
+  const int K = int(right.size()) - 1;
+  if (int(left.size()) - 1 != K || K < 1) return false;
+  const int m0 = int(base.size()) - 1;
+  std::vector<std::vector<int>> rows{base};
+  for (int j = 1; j <= K; ++j) {
+    const int m = j == K ? 0 : std::max(1, int(std::lround(m0 * double(K - j) / K)));
+    const Vec3 a = (edit.point(left[j]) - c.centre).normalized(), b = (edit.point(right[j]) - c.centre).normalized();
+    const double angle = std::acos(std::clamp(a.dot(b), -1.0, 1.0));
+    std::vector<int> row{left[j]};
+    for (int i = 1; i < m; ++i) {  // slerp
+      const double t = double(i) / m;
+      const Vec3 d = angle > 1e-12 ? Vec3((std::sin((1 - t) * angle) * a + std::sin(t * angle) * b) / std::sin(angle)) : a;
+      row.push_back(edit.add_point(c.centre + c.radius * d.normalized()));
+    }
+    if (m > 0) row.push_back(right[j]);
+    rows.push_back(row);
+  }
+  for (int j = 0; j < K; ++j) {  // zip row j (lower) with row j + 1
+    const std::vector<int>&lo = rows[j], &hi = rows[j + 1];
+    const int nl = int(lo.size()) - 1, nh = int(hi.size()) - 1;
+    int i = 0, k = 0;
+    while (i < nl || k < nh) {
+      const bool step_low = k == nh || (i < nl && double(i + 1) / nl <= double(k + 1) / std::max(nh, 1));
+      if (step_low) tris.push_back({lo[i], lo[i + 1], hi[k]}), ++i;
+      else tris.push_back({lo[i], hi[k + 1], hi[k]}), ++k;
+    }
+  }
+  return true;
+}
+
+}  // namespace
+
+void blend_sphere_corner(const Points& V, const Triangles& F, const SphereCorner& corner, double tolerance,
+                         const SharpChain& chain, double reach, Points& V_out, Triangles& F_out) {
+  const MeshTopology mesh(V, F);
+  int vertex = -1;
+  for (int v = 0; v < mesh.num_vertices(); ++v)
+    if ((mesh.point(v) - corner.vertex).norm() <= 1e-9 * std::max(1.0, corner.vertex.cwiseAbs().maxCoeff())) vertex = v;
+  if (vertex < 0) not_blendable(corner, "a round took its vertex");
+  const std::unordered_set<int> region = corner_facets(mesh, corner, vertex);
+  const std::vector<int> loop = hole_loop(mesh, region, corner);
+  for (int v : loop)
+    if (std::abs((mesh.point(v) - corner.centre).norm() - corner.radius) > tolerance + 1e-3 * corner.radius)
+      not_blendable(corner, "the rounds' ends do not all lie on the corner ball (at " + format_point(mesh.point(v)) + ")");
+
+  MeshEdit edit(mesh);
+  edit.removed = region;
+  Vec3 normal = Vec3::Zero();  // the loop's own (Newell): the triangulation keeps the loop's orientation
+  std::unordered_set<std::uint64_t> sides;
+  for (size_t i = 0; i < loop.size(); ++i) {
+    const int a = loop[i], b = loop[(i + 1) % loop.size()];
+    normal += (mesh.point(a) - corner.centre).cross(mesh.point(b) - corner.centre);
+    sides.insert(edge_key(a, b));
+  }
+  // The patch's corners on the loop: the feet of the ball.
+  int at[3];
+  for (int k = 0; k < 3; ++k) {
+    at[k] = 0;
+    for (int i = 1; i < int(loop.size()); ++i)
+      if ((mesh.point(loop[i]) - corner.feet[k]).norm() < (mesh.point(loop[at[k]]) - corner.feet[k]).norm()) at[k] = i;
+    if ((mesh.point(loop[at[k]]) - corner.feet[k]).norm() > 1e-3 * corner.radius + tolerance)
+      not_blendable(corner, "no round ends at the ball's foot " + format_point(corner.feet[k]));
+  }
+  if ((at[1] - at[0] + int(loop.size())) % int(loop.size()) > (at[2] - at[0] + int(loop.size())) % int(loop.size())) std::swap(at[1], at[2]);
+  std::vector<std::array<int, 3>> tris;
+  bool rows = false;
+  for (int turn = 0; turn < 3 && !rows; ++turn) {  // an apex whose two sides have one count of segments
+    const int order[3] = {at[turn], at[(turn + 1) % 3], at[(turn + 2) % 3]};
+    rows = rows_to_apex(edit, loop, order, corner, tris);
+  }
+  if (!rows) triangulate_polygon(edit, loop, normal, tris);
+  // A triangle of sides e strays about e^2 / (6 r) from the ball at its middle.
+  refine_on_ball(edit, tris, sides, corner, std::sqrt(6 * corner.radius * tolerance));
+  // Every triangle faces the way the loop runs (the rows are made without regard to it): seen from the
+  // ball's centre, as the loop's own normal does.
+  Vec3 middle = Vec3::Zero();
+  for (int v : loop) middle += mesh.point(v) / double(loop.size());
+  const bool outward = normal.dot(middle - corner.centre) > 0;
+  for (auto& t : tris) {
+    const Vec3 a = edit.point(t[0]), b = edit.point(t[1]), c = edit.point(t[2]);
+    if (((b - a).cross(c - a).dot((a + b + c) / 3 - corner.centre) > 0) != outward) std::swap(t[1], t[2]);
+  }
+  edit.added = tris;
+  check_result(edit, chain, reach, tolerance);
+  write_mesh(edit, V_out, F_out);
+}
+
+}  // namespace meshround
