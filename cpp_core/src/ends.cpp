@@ -1,5 +1,8 @@
 #include "ends.h"
 
+#include <cstdio>
+#include <cstdlib>
+
 #include "meshround/surface.h"
 
 #include <algorithm>
@@ -111,6 +114,8 @@ int insert_corner(SplitMesh& m, const MeshTopology& mesh, std::vector<int>& face
   const auto f = m.tris[best];
   for (int k = 0; k < 3; ++k)
     if ((m.points[f[k]] - q).norm() <= slack) return f[k];
+  for (int k = 0; k < 3 && (region < 1 || region > 3); ++k)  // within a hair of a side: on it (no sliver)
+    if ((closest_point_on_segment(q, m.points[f[k]], m.points[f[(k + 1) % 3]], nullptr) - q).norm() <= slack) region = k + 1;
   if (region >= 1 && region <= 3) {  // on edge (f[k], f[k+1]): split both facets on it
     const int k = region - 1, a = f[k], b = f[(k + 1) % 3];
     const int x = m.add(q);
@@ -281,6 +286,9 @@ bool split_along_end_segments(const MeshTopology& mesh, const std::vector<EndSeg
     }
     snap_onto_plane(m, mesh, facets, seg.cut, p, m.points[p], seg.corner, slack);
     const int q = insert_corner(m, mesh, facets, seg.corner, slack);
+    if (getenv("MESHROUND_DEBUG"))
+      fprintf(stderr, "end segment %d (%g %g %g) -> %d (%g %g %g), %zu facets\n", p, m.points[p].x(), m.points[p].y(), m.points[p].z(), q,
+              q >= 0 ? m.points[q].x() : 0., q >= 0 ? m.points[q].y() : 0., q >= 0 ? m.points[q].z() : 0., facets.size());
     if (q < 0 || q == p) continue;
     split_crossed(m, facets, seg.cut, p, q, slack);
   }

@@ -234,7 +234,9 @@ TrimLines trim_base_meshes(const MeshTopology& mesh, const SharpChain& chain, co
       VertexSide& s = vs[v];
       if (!s.exact) {
         s.d = distance(edit.point(v), s.u, &s.u);
-        if (chain_vertices.count(v)) s.d = std::min(s.d, -1e-9);  // the chain is inside the band by definition
+        // The chain is inside the band by definition, up to a capped end's plane (a sphere corner's plane
+        // crosses the chain short of its end: the chain's vertices past it are outside).
+        if (chain_vertices.count(v) && past_end(edit.point(v)) <= plane_slack) s.d = std::min(s.d, -1e-9);
         s.exact = true;
       }
       return s;
@@ -261,7 +263,7 @@ TrimLines trim_base_meshes(const MeshTopology& mesh, const SharpChain& chain, co
         s.exact = true;
         s.d = distance(mesh.point(v), s_chain, &s.u, &away);
         if (on_end_plane && std::abs(s.d) <= plane_slack) s.d = 0;  // the band's corner (ends.h: a vertex)
-        if (chain_vertices.count(v)) s.d = std::min(s.d, -1e-9);  // the chain is inside the band by definition
+        if (chain_vertices.count(v)) s.d = std::min(s.d, -1e-9);  // (past a capped end's plane: kFar above)
         // A vertex very near the line moves onto it (when that does not change the surface): no slivers.
         // Near means within a fifth of its shortest edge; or within kNearShaped of it when its facets
         // keep their shape (a fine mesh's row of vertices just off the line would leave a strip of
