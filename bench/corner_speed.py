@@ -1,5 +1,6 @@
 """Console-call times of a pocket rim rounded as one network (four chains, four mitred corners) against
-one of its edges alone, on two mesh sizes of the 80 x 60 x 30 block with a 40 x 30, 12 deep pocket, r = 2.
+one of its edges alone, on two mesh sizes of the 80 x 60 x 30 block with a 40 x 30, 12 deep pocket, r = 2;
+and of a box corner's three edges (one sphere corner) against one of them, 100 x 60 x 40 box, r = 5.
 
     /usr/bin/python3 bench/corner_speed.py      (prints the best of three calls per row)
 """
@@ -19,11 +20,14 @@ V = FreeCAD.Vector
 RIM = [V(40, 15, 30), V(60, 30, 30), V(40, 45, 30), V(20, 30, 30)]
 
 
-def best_of_three(mesh, seeds):
+BOX_CORNER = [V(50, 60, 40), V(100, 30, 40), V(100, 60, 20)]
+
+
+def best_of_three(mesh, seeds, radius=2.0):
     times = []
     for _ in range(3):
         start = time.perf_counter()
-        MeshRound.round_edges(mesh, seeds, 2.0)
+        MeshRound.round_edges(mesh, seeds, radius)
         times.append(time.perf_counter() - start)
     return min(times)
 
@@ -34,6 +38,14 @@ def main():
         mesh = MeshPart.meshFromShape(Shape=block, MaxLength=max_length)
         print(f"{mesh.CountFacets} facets: whole rim (4 chains, 4 mitres) {best_of_three(mesh, RIM):.3f} s, "
               f"one rim edge {best_of_three(mesh, RIM[:1]):.3f} s")
+    for max_length in (2.0, 1.0):
+        mesh = MeshPart.meshFromShape(Shape=Part.makeBox(100, 60, 40), MaxLength=max_length)
+        try:
+            corner = f"{best_of_three(mesh, BOX_CORNER, 5.0):.3f} s"
+        except MeshRound.RoundingError as e:
+            corner = f"refused ({e.code})"
+        print(f"{mesh.CountFacets} facets: box corner (3 chains, 1 sphere corner) {corner}, "
+              f"one of its edges {best_of_three(mesh, BOX_CORNER[:1], 5.0):.3f} s")
 
 
 if __name__ == "__main__":

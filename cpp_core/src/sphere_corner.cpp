@@ -174,8 +174,9 @@ void blend_sphere_corner(const Points& V, const Triangles& F, const SphereCorner
   const std::unordered_set<int> region = corner_facets(mesh, corner, vertex);
   const std::vector<int> loop = hole_loop(mesh, region, corner);
   for (int v : loop)
-    if (std::abs((mesh.point(v) - corner.centre).norm() - corner.radius) > tolerance + 1e-3 * corner.radius)
+    if (std::abs((mesh.point(v) - corner.centre).norm() - corner.radius) > tolerance + 1e-3 * corner.radius) {
       not_blendable(corner, "the rounds' ends do not all lie on the corner ball (at " + format_point(mesh.point(v)) + ")");
+    }
 
   MeshEdit edit(mesh);
   edit.removed = region;

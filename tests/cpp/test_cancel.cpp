@@ -142,7 +142,13 @@ TEST(Cancel, NoPollAndAPollThatNeverFiresGiveTheSameResult) {
 }
 
 // The longest stretch between polls is what a request can wait. On an idle core it is a few ms; the
-// bound leaves room for a machine shared with other builds.
+// bound leaves room for a machine shared with other builds. Under ASan + UBSan (tools/sanitize.sh) every
+// pass runs 3-6 times slower: the longest stretch, the adjacency of the 786k-facet mesh, takes ~0.6 s.
+#if defined(__SANITIZE_ADDRESS__)
+constexpr double kLongestPollGap = 1.5;
+#else
+constexpr double kLongestPollGap = 0.3;
+#endif
 TEST(Cancel, PollsComeOftenThroughEveryPass) {
   for (const Input* in : {&fine_box(), &room_probe_ridge()}) {
     RoundReport report;
@@ -152,7 +158,7 @@ TEST(Cancel, PollsComeOftenThroughEveryPass) {
     for (const auto& [pass, s] : report.seconds) std::printf(" %s %.3f", pass.c_str(), s);
     std::printf("\n");
     EXPECT_GT(log.polls, 100);
-    EXPECT_LT(log.longest_gap, 0.3);
+    EXPECT_LT(log.longest_gap, kLongestPollGap);
   }
   RoundReport report;
   watch_polls(room_probe_ridge(), &report);
