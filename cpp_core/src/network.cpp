@@ -1,0 +1,111 @@
+#include "network.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <string>
+
+namespace meshround {
+
+const CornerEnd* corner_at(const NetworkPart& net, const Vec3& end_point) {
+  for (const CornerEnd& c : net.corners)
+    if ((c.point - end_point).norm() <= 1e-9 * std::max(1.0, end_point.cwiseAbs().maxCoeff())) return &c;
+  return nullptr;
+}
+
+namespace {
+
+// Three picked chains ending at vertex v (chains `ids`): their three faces there (each chain's two sides,
+// paired up), the convexity all three share, and the ball touching the three faces.
+SphereCorner three_round_corner(const MeshTopology& input, const std::vector<SharpChain>& chains, const std::array<size_t, 3>& ids,
+                                int v, const RoundOptions& opt, const Vec3& picked) {
+  SphereCorner corner;
+  corner.vertex = input.point(v);
+  auto refuse = [&](const std::string& why) {
+    throw RoundingError(ErrorCode::CornerNotBlendable, "the three chains picked at and around " + format_point(picked) + " meet at " +
+                        format_point(corner.vertex) + ": " + why);
+  };
+  if (!opt.radius_law.empty()) refuse("variable radii into a corner are not blended yet");
+  corner.radius = opt.radius;
+  std::vector<Vec3> normals;  // the faces at the vertex, one normal each
+  const double same = std::cos(opt.feature_angle_deg * M_PI / 180);
+  int convex = 0;
+  for (int i = 0; i < 3; ++i) {
+    const SharpChain& c = chains[ids[i]];
+    const bool at_start = c.vertices.front() == v;
+    const int next = at_start ? c.vertices[1] : c.vertices[c.vertices.size() - 2];
+    corner.toward[i] = (input.point(v) - input.point(next)).normalized();
+    const std::vector<int> sides = input.edge_facets(v, next);
+    if (sides.size() != 2) refuse("an edge there has " + std::to_string(sides.size()) + " facets");
+    Vec3 n[2];
+    for (int k = 0; k < 2; ++k) {
+      n[k] = input.facet_normal(sides[k]);
+      if (std::none_of(normals.begin(), normals.end(), [&](const Vec3& m) { return m.dot(n[k]) > same; })) normals.push_back(n[k]);
+    }
+    int third = 0;  // the corner of sides[0] off the edge: behind the other side's plane on a convex edge
+    while (input.F(sides[0], third) == v || input.F(sides[0], third) == next) ++third;
+    convex += (input.corner(sides[0], third) - input.point(v)).dot(n[1]) < 0 ? 1 : -1;
+  }
+  if (normals.size() != 3) refuse(std::to_string(normals.size()) + " faces meet there, not three");
+  if (std::abs(convex) != 3) refuse("convex and concave edges mixed at one corner are not blended yet");
+  const Vec3 points[3] = {corner.vertex, corner.vertex, corner.vertex};
+  const Vec3 n3[3] = {normals[0], normals[1], normals[2]};
+  if (!corner_ball(points, n3, corner.radius, convex > 0, &corner.centre, corner.feet)) refuse("its faces do not meet in one point");
+  for (const Vec3& t : corner.toward)
+    if ((corner.vertex - corner.centre).dot(t) <= 0) refuse("the ball touching its three faces lies beyond a chain's end");
+  return corner;
+}
+
+}  // namespace
+
+// The corners where picked chains meet: a vertex where exactly two of them end is blended by a miter, as
+// OCCT blends two rounds meeting where a third edge stays sharp: both rounds run on to the plane through
+// the vertex bisecting the two chains and stop there, meeting along one curve (exact when their radii
+// and faces match there; otherwise the second round's rows find no vertex of the first's to share and
+// the call is refused, naming the corner). Three or more rounds at a vertex, a chain running on through
+// another's end, and variable radii into a corner are refused, naming the vertex.
+std::vector<NetworkPart> find_corners(const MeshTopology& input, const std::vector<SharpChain>& chains, const std::vector<Vec3>& picked,
+                                      const RoundOptions& opt, std::vector<std::pair<SphereCorner, size_t>>* spheres) {
+  std::vector<NetworkPart> out(chains.size());
+  auto into = [](const SharpChain& c, bool at_start) {
+    const size_t n = c.points.size();
+    return at_start ? Vec3((c.points[1] - c.points[0]).normalized()) : Vec3((c.points[n - 2] - c.points[n - 1]).normalized());
+  };
+  for (size_t k = 0; k < chains.size(); ++k) {
+    if (chains[k].closed) continue;
+    for (bool at_start : {true, false}) {
+      const int v = at_start ? chains[k].vertices.front() : chains[k].vertices.back();
+      std::vector<std::pair<size_t, bool>> others;  // (chain, meets there at its start)
+      for (size_t j = 0; j < chains.size(); ++j) {
+        if (j == k || std::find(chains[j].vertices.begin(), chains[j].vertices.end(), v) == chains[j].vertices.end()) continue;
+        const bool j_start = !chains[j].closed && chains[j].vertices.front() == v;
+        if (chains[j].closed || (!j_start && chains[j].vertices.back() != v))
+          throw RoundingError(ErrorCode::CornerNotBlendable, "the chain picked at " + format_point(picked[k]) + " ends at " + format_point(input.point(v)) +
+                              " on the side of the chain picked at " + format_point(picked[j]) + ": a round running into another's side is not made yet");
+        others.push_back({j, j_start});
+      }
+      if (others.empty()) continue;
+      if (others.size() > 2)
+        throw RoundingError(ErrorCode::CornerNotBlendable, std::to_string(others.size() + 1) + " of the picked chains meet at " + format_point(input.point(v)) +
+                            ": corners of four or more rounds are not made yet (round fewer of them there)");
+      if (others.size() == 2) {
+        const SphereCorner corner = three_round_corner(input, chains, {k, others[0].first, others[1].first}, v, opt, picked[k]);
+        if (std::none_of(spheres->begin(), spheres->end(), [&](const auto& c) { return c.first.vertex == corner.vertex; }))
+          spheres->push_back({corner, k});
+        CornerEnd end{input.point(v), into(chains[k], at_start), false};
+        end.plane_point = corner.centre, end.sphere = true;
+        out[k].corners.push_back(end);
+        continue;
+      }
+      if (!opt.radius_law.empty())
+        throw RoundingError(ErrorCode::CornerNotBlendable, "the chains picked at " + format_point(picked[k]) + " and " + format_point(picked[others[0].first]) +
+                            " meet at " + format_point(input.point(v)) + ": variable radii into a corner are not blended yet");
+      const Vec3 d = into(chains[k], at_start) - into(chains[others[0].first], others[0].second);
+      out[k].corners.push_back({input.point(v), d.normalized(), others[0].first < k});
+    }
+  }
+  return out;
+}
+
+
+}  // namespace meshround

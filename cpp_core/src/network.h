@@ -1,0 +1,37 @@
+// Networks of picked chains (round_edges): where chains of one call meet at a vertex, and how each
+// round ends there -- a mitre between two rounds, or the plane across the chain through the ball of a
+// sphere corner (sphere_corner.h) between three.
+#pragma once
+#include <utility>
+#include <vector>
+
+#include "meshround/chain.h"
+#include "meshround/options.h"
+#include "sphere_corner.h"
+
+namespace meshround {
+
+// Where a chain meets another picked chain at a corner (round_edges): the plane both rounds stop at there
+// (through the corner vertex, bisecting the two chains), and whether the other round is made already (then
+// this round's end column is that round's, see SharedEnds); and the vertices of the rounds made before.
+struct CornerEnd {
+  Vec3 point, normal;
+  bool other_made = false;
+  Vec3 plane_point = point;  // the plane's point: the vertex for a mitre, the ball's centre at a sphere corner
+  bool sphere = false;       // one of three rounds at the vertex (sphere_corner.h)
+};
+struct NetworkPart {
+  std::vector<CornerEnd> corners;
+  std::vector<Vec3> earlier_round_points;
+};
+
+// The corner at a chain end (its end vertex is the corner's point), or null.
+const CornerEnd* corner_at(const NetworkPart& net, const Vec3& end_point);
+
+// Each chain's corners with the others (chains traced on `input`, `picked` their seeds), and the sphere
+// corners with a chain that ends at each. Refuses (corner_not_blendable, naming the vertex) what is not
+// made yet.
+std::vector<NetworkPart> find_corners(const MeshTopology& input, const std::vector<SharpChain>& chains, const std::vector<Vec3>& picked,
+                                      const RoundOptions& opt, std::vector<std::pair<SphereCorner, size_t>>* spheres);
+
+}  // namespace meshround
