@@ -1,11 +1,15 @@
-"""FreeCAD GUI macro: a rectangular pocket's rim rounded in one call, its corners mitred, as a PNG.
+"""FreeCAD GUI macro: corners of rounds made in one call, as a PNG: a rectangular pocket's rim with its
+corners mitred (scene pocket_rim, the default), or a box corner with its three edges rounded, meeting in
+the corner ball (scene box_corner).
 
     QTWEBENGINE_CHROMIUM_FLAGS=--no-sandbox xvfb-run -a -s "-screen 0 1600x1200x24" freecad resources/pocket_render.py
+    MESHROUND_SCENE=box_corner QTWEBENGINE_CHROMIUM_FLAGS=--no-sandbox xvfb-run -a -s "-screen 0 1600x1200x24" freecad resources/pocket_render.py
 
-Meshes an 80 x 60 x 30 block with a 40 x 30, 12 deep pocket (MeshPart, elements 0.8 mm), rounds the four
-rim edges with r = 2 mm (one seed on each), and renders the result twice: the whole block, and a close-up
-of one pocket corner with its facets, the new facets in orange.  Writes resources/images/pocket_rim.png
-(or $POCKET_PNG).  FreeCAD quits when done (also on error).
+pocket_rim: an 80 x 60 x 30 block with a 40 x 30, 12 deep pocket (MeshPart, elements 0.8 mm), its four rim
+edges rounded with r = 2 mm (one seed on each). box_corner: a 100 x 60 x 40 box (elements 2 mm), the three
+edges at (100, 60, 40) rounded with r = 5 mm. Each is rendered twice: the whole part, and a close-up of a
+corner with its facets, the new facets in orange. Writes resources/images/<scene>.png (or $POCKET_PNG).
+FreeCAD quits when done (also on error).
 """
 import os
 import sys
@@ -24,18 +28,25 @@ import MeshRound  # noqa: E402
 from render_support import rest_and_band, run_unattended, set_camera  # noqa: E402
 
 V = FreeCAD.Vector
-OUT = os.environ.get("POCKET_PNG", os.path.join(HERE, "images", "pocket_rim.png"))
 TILE = (800, 600)
 GREY, ORANGE, LINES = (0.80, 0.83, 0.88), (1.00, 0.55, 0.15), (0.35, 0.38, 0.45)
-VIEWS = [((-0.6, 1.0, -1.1), None, None, False), ((1.0, -1.0, -0.9), (60.0, 15.0, 28.5), 10.0, True)]
+# scene -> (solid, element size, seeds, radius, views: (view direction, focus, height, facets shown))
+SCENES = {
+    "pocket_rim": (lambda: Part.makeBox(80, 60, 30).cut(Part.makeBox(40, 30, 13, V(20, 15, 18))).removeSplitter(), 0.8,
+                   [V(40, 15, 30), V(60, 30, 30), V(40, 45, 30), V(20, 30, 30)], 2.0,
+                   [((-0.6, 1.0, -1.1), None, None, False), ((1.0, -1.0, -0.9), (60.0, 15.0, 28.5), 10.0, True)]),
+    "box_corner": (lambda: Part.makeBox(100, 60, 40), 2.0, [V(50, 60, 40), V(100, 30, 40), V(100, 60, 20)], 5.0,
+                   [((-1.0, -1.1, -0.8), None, None, False), ((-1.0, -1.0, -1.0), (97.0, 57.0, 37.0), 16.0, True)]),
+}
+SCENE = os.environ.get("MESHROUND_SCENE", "pocket_rim")
+OUT = os.environ.get("POCKET_PNG", os.path.join(HERE, "images", SCENE + ".png"))
 
 
 def main():
-    block = Part.makeBox(80, 60, 30).cut(Part.makeBox(40, 30, 13, V(20, 15, 18))).removeSplitter()
-    sharp = MeshPart.meshFromShape(Shape=block, MaxLength=0.8)
-    rim = [V(40, 15, 30), V(60, 30, 30), V(40, 45, 30), V(20, 30, 30)]
-    result = MeshRound.round_edges(sharp, rim, 2.0)
-    doc = FreeCAD.newDocument("PocketRim")
+    build, element, seeds, radius, views = SCENES[SCENE]
+    sharp = MeshPart.meshFromShape(Shape=build(), MaxLength=element)
+    result = MeshRound.round_edges(sharp, seeds, radius)
+    doc = FreeCAD.newDocument("Corners")
     shown = []
     for part, color in zip(rest_and_band(sharp, result.mesh), (GREY, ORANGE)):
         feature = doc.addObject("Mesh::Feature", "Band" if color == ORANGE else "Rest")
@@ -44,7 +55,7 @@ def main():
     doc.recompute()
     view = FreeCADGui.ActiveDocument.ActiveView
     tiles = []
-    for k, (direction, focus, height, facets) in enumerate(VIEWS):
+    for k, (direction, focus, height, facets) in enumerate(views):
         for feature, color in shown:
             feature.ViewObject.DisplayMode = "Flat Lines" if facets else "Shaded"
             feature.ViewObject.ShapeColor = color
