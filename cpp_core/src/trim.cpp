@@ -448,8 +448,11 @@ TrimLines trim_base_meshes(const MeshTopology& mesh, const SharpChain& chain, co
           const Vec3 mid = on_facet(prev.u + 0.5 * du);
           double t;
           const double sag = (closest_point_on_segment(mid, x1, x2, &t) - mid).norm();
-          int segs = std::max(1, int(std::ceil((x2 - x1).norm() / opt.max_spacing(prev.u + 0.5 * du))));
-          segs = std::max(segs, int(std::ceil(std::sqrt(sag / (0.25 * opt.tolerance)))));
+          double want = std::max({1.0, std::ceil((x2 - x1).norm() / opt.max_spacing(prev.u + 0.5 * du)),
+                                  std::ceil(std::sqrt(sag / (0.25 * opt.tolerance)))});
+          if (!(want <= 1e9)) want = INFINITY;  // (NaN too): refused by the budget below, never cast
+          edit.check_budget(2.0 * (double(edit.new_points.size()) + want), "trim line points");
+          const int segs = int(want);
           for (int s = 1; s < segs; ++s) {
             const double u = surface.wrap(prev.u + du * s / segs);
             const int id = edit.add_point(on_facet(u));
