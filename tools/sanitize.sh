@@ -12,6 +12,7 @@ JOBS="${MESHROUND_SANITIZE_BUILD_JOBS:-2}"
 mkdir -p "$MOD"
 # The workbench's Python files, without the module built in the source tree.
 tar -C "$ROOT/Mod/MeshRound" --exclude='_meshround_core*.so' --exclude=__pycache__ -cf - . | tar -C "$MOD" -xf -
+cp -r "$ROOT/resources" "$BUILD/"  # the CLI's demo script, found beside the workbench's copy
 cmake -S "$ROOT" -B "$BUILD" -DCMAKE_BUILD_TYPE=RelWithDebInfo -DMESHROUND_SANITIZE=ON -DMESHROUND_BUILD_BENCH=OFF \
   -DMESHROUND_MODULE_DIR="$MOD/MeshRound" > "$BUILD.log" 2>&1 || { cat "$BUILD.log"; exit 1; }
 cmake --build "$BUILD" -j"$JOBS" >> "$BUILD.log" 2>&1 || { tail -50 "$BUILD.log"; exit 1; }
