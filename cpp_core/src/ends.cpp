@@ -1,8 +1,5 @@
 #include "ends.h"
 
-#include <cstdio>
-#include <cstdlib>
-
 #include "meshround/surface.h"
 
 #include <algorithm>
@@ -286,9 +283,6 @@ bool split_along_end_segments(const MeshTopology& mesh, const std::vector<EndSeg
     }
     snap_onto_plane(m, mesh, facets, seg.cut, p, m.points[p], seg.corner, slack);
     const int q = insert_corner(m, mesh, facets, seg.corner, slack);
-    if (getenv("MESHROUND_DEBUG"))
-      fprintf(stderr, "end segment %d (%g %g %g) -> %d (%g %g %g), %zu facets\n", p, m.points[p].x(), m.points[p].y(), m.points[p].z(), q,
-              q >= 0 ? m.points[q].x() : 0., q >= 0 ? m.points[q].y() : 0., q >= 0 ? m.points[q].z() : 0., facets.size());
     if (q < 0 || q == p) continue;
     split_crossed(m, facets, seg.cut, p, q, slack);
   }

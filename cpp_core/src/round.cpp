@@ -416,8 +416,17 @@ std::vector<RoundOptions> options_per_chain(const RoundOptions& opt, const std::
 }
 
 // The thin facets (and the smallest angle) among the result's facets that are not the input's, counted
-// anew after a pass that replaces facets the rounds made (the sphere corners' patches).
-void recount_new_facets(const Points& V, const Triangles& F, const Points& out_V, const Triangles& out_F, RoundReport& report) {
+// anew after a pass that replaces facets the rounds made (the sphere corners' patches). Only facets with
+// a corner in the box [lo, hi] are looked at: every made facet has one there (the output check's reach).
+void recount_new_facets(const Points& V, const Triangles& F, const Points& out_V, const Triangles& out_F, const Vec3& lo,
+                        const Vec3& hi, RoundReport& report) {
+  auto near = [&](const Points& P, const Triangles& T, Eigen::Index f) {
+    for (int k = 0; k < 3; ++k) {
+      const Vec3 p = P.row(T(f, k)).transpose();
+      if (!(p.array() < lo.array()).any() && !(p.array() > hi.array()).any()) return true;
+    }
+    return false;
+  };
   auto corners = [](const Points& P, const Triangles& T, Eigen::Index f) {
     std::array<std::array<double, 3>, 3> c;
     for (int k = 0; k < 3; ++k) c[k] = {P(T(f, k), 0), P(T(f, k), 1), P(T(f, k), 2)};
@@ -425,11 +434,12 @@ void recount_new_facets(const Points& V, const Triangles& F, const Points& out_V
     return c;
   };
   std::set<std::array<std::array<double, 3>, 3>> input;
-  for (Eigen::Index f = 0; f < F.rows(); ++f) input.insert(corners(V, F, f));
+  for (Eigen::Index f = 0; f < F.rows(); ++f)
+    if (near(V, F, f)) input.insert(corners(V, F, f));
   int thin = 0;
   double smallest = 180;
   for (Eigen::Index f = 0; f < out_F.rows(); ++f) {
-    if (input.count(corners(out_V, out_F, f))) continue;
+    if (!near(out_V, out_F, f) || input.count(corners(out_V, out_F, f))) continue;
     const double a = smallest_angle_deg(out_V.row(out_F(f, 0)).transpose(), out_V.row(out_F(f, 1)).transpose(), out_V.row(out_F(f, 2)).transpose());
     thin += a < kThinDeg, smallest = std::min(smallest, a);
   }
@@ -514,7 +524,15 @@ RoundResult round_edges(const Points& V, const Triangles& F, const std::vector<V
     cur_V.swap(next_V);
     cur_F.swap(next_F);
   }
-  if (!spheres.empty()) recount_new_facets(V, F, cur_V, cur_F, result.report);  // the patches replaced end caps
+  if (!spheres.empty()) {  // the patches replaced end caps: their facets are counted again, in the chains' reach
+    Vec3 lo = Vec3::Constant(INFINITY), hi = Vec3::Constant(-INFINITY);
+    double reach = 0;
+    for (size_t k = 0; k < chains.size(); ++k) {
+      for (const Vec3& p : chains[k].points) lo = lo.cwiseMin(p), hi = hi.cwiseMax(p);
+      reach = std::max(reach, chain_options[k].reach * chain_options[k].max_radius());
+    }
+    recount_new_facets(V, F, cur_V, cur_F, lo.array() - 2 * reach, hi.array() + 2 * reach, result.report);
+  }
   result.vertices.swap(cur_V);
   result.triangles.swap(cur_F);
   RoundReport& rep = result.report;
