@@ -158,8 +158,10 @@ std::vector<ProfileStation> end_cut_profiles(const SpineContext& ctx, const Radi
       cut[end] = EndCut{true, corner->plane_point, out.dot(corner->normal) > 0 ? corner->normal : Vec3(-corner->normal), out};
     }
     if (!cut[end].active) continue;
-    // Measured on a ball clear of the end face (the one at the end may already lean on it).
-    const double to_end = std::min(2 * law.max_radius(), 0.25 * L);
+    // Measured on a ball clear of the end face (the one at the end may already lean on it); at a sphere
+    // corner, on the ball at its plane or before it (one past it would stand on the other rounds' faces).
+    double to_end = std::min(2 * law.max_radius(), 0.25 * L);
+    if (corner && corner->sphere) to_end = std::min(L, std::max(to_end, cut[end].past(end ? chain.points.back() : chain.points.front())));
     setback[end] = end_cut_setback(station(ctx, law, end ? L - to_end : to_end), to_end, cut[end]);
     // A mitre that cuts back into the rounds (two convex edges meeting, the third edge kept sharp): its
     // rows would have to stop at a different length on each side of the profile, which one lofted
