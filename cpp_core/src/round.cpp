@@ -163,13 +163,6 @@ std::vector<ProfileStation> end_cut_profiles(const SpineContext& ctx, const Radi
     double to_end = std::min(2 * law.max_radius(), 0.25 * L);
     if (corner && corner->sphere) to_end = std::min(L, std::max(to_end, cut[end].past(end ? chain.points.back() : chain.points.front())));
     setback[end] = end_cut_setback(station(ctx, law, end ? L - to_end : to_end), to_end, cut[end]);
-    // A mitre that cuts back into the rounds (two convex edges meeting, the third edge kept sharp): its
-    // rows would have to stop at a different length on each side of the profile, which one lofted
-    // surface of this kind does not hold.
-    if (corner && !corner->sphere && setback[end] > 0)
-      throw RoundingError(ErrorCode::CornerNotBlendable, "the rounds that meet at " + format_point(corner->point) + " would be cut back by "
-                          "their mitre (its plane leans over them: a convex corner whose third edge stays sharp, or drafted walls): that corner is "
-                          "not made yet; round one of those chains");
   }
   if (setback[0] + setback[1] > 0.5 * L)
     throw RoundingError(ErrorCode::CornerNotBlendable, "the chain through " + format_point(chain.point_at(0.5 * L)) + " is too short for its round to "
@@ -184,6 +177,7 @@ std::vector<ProfileStation> end_cut_profiles(const SpineContext& ctx, const Radi
     last.centre += shift, last.contact[0] += shift, last.contact[1] += shift;
     last.s = end ? L : 0.0;
     last.cut = cut[end];
+    last.carried = setback[end] > 0;
     if (setback[end] == 0) (end ? st.back() : st.front()) = last;
     else if (end) st.push_back(last);
     else st.insert(st.begin(), last);
@@ -309,7 +303,9 @@ RoundedChain round_one_chain(const MeshTopology& mesh, const Vec3& seed, const R
     shared.no_graded_rows |= c != nullptr && !c->sphere;  // both rounds at a mitre make the same rows
     shared.at[end] = c && c->other_made;
   }
-  const double weld = 1e-6 * tol;
+  // The two rounds' end columns are the same points, each computed from its own balls: where those are
+  // solved (drafted walls) they agree to about 1e-6 r, far closer than any two points of a column.
+  const double weld = 1e-3 * tol;
   shared.vertex_at = [&](const Vec3& p) {
     for (const auto& [q, v] : earlier_points)
       if ((q - p).norm() <= weld) return v;
@@ -526,7 +522,9 @@ RoundResult round_edges(const Points& V, const Triangles& F, const std::vector<V
     cur_V.swap(next_V);
     cur_F.swap(next_F);
   }
-  if (!spheres.empty()) {  // the patches replaced end caps: their facets are counted again, in the chains' reach
+  // Later rounds and corner patches replace facets that earlier rounds made (and counted): the new facets
+  // are counted again, within the chains' reach.
+  if (std::any_of(network.begin(), network.end(), [](const NetworkPart& net) { return !net.corners.empty(); })) {
     Vec3 lo = Vec3::Constant(INFINITY), hi = Vec3::Constant(-INFINITY);
     double reach = 0;
     for (size_t k = 0; k < chains.size(); ++k) {

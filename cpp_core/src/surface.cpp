@@ -70,9 +70,21 @@ void profile_arc(const ProfileStation& st, Vec3 poles[3], double weights[3]) {
     for (int k = 0; k < 3; ++k) poles[k] = st.cut.onto(poles[k]);
 }
 
-RoundingSurface loft_profiles(const std::vector<ProfileStation>& stations, bool closed, double period) {
+namespace {
+
+// The loft's poles along u (homogeneous: pole x weight, and the weight) and its knots, for each of the
+// arc's three poles.
+struct LoftRows {
+  std::vector<Vec3> poles[3];
+  std::vector<double> weights[3];
+  std::vector<double> knots;
+  std::vector<int> mults;
+};
+
+// Cubic interpolation of the stations' arcs in homogeneous space (which keeps every station's section
+// an exact circle).
+LoftRows interpolate_stations(const std::vector<ProfileStation>& stations, bool closed, double period) {
   const int n = int(stations.size());
-  if (n < 4) throw RoundingError(ErrorCode::SurfaceFailed, "too few profiles to loft a rounding surface");
   std::vector<double> params(n);
   std::vector<Vec3> rows[3], weight_rows[3];
   for (int i = 0; i < n; ++i) {
@@ -80,7 +92,6 @@ RoundingSurface loft_profiles(const std::vector<ProfileStation>& stations, bool 
     double w[3];
     profile_arc(stations[i], poles, w);
     params[i] = stations[i].s;
-    // Interpolating in homogeneous space keeps every station's section an exact circle.
     // The weight rides in x; y = s only keeps consecutive points apart, as OCCT requires.
     for (int j = 0; j < 3; ++j) rows[j].push_back(poles[j] * w[j]), weight_rows[j].push_back(Vec3(w[j], params[i], 0));
   }
@@ -91,30 +102,77 @@ RoundingSurface loft_profiles(const std::vector<ProfileStation>& stations, bool 
   } catch (const Standard_Failure& e) {
     throw RoundingError(ErrorCode::SurfaceFailed, std::string("lofting the rounding surface failed: ") + e.GetMessageString());
   }
+  LoftRows out;
   const int nu = cp[0]->NbPoles();
-  TColgp_Array2OfPnt poles(1, nu, 1, 3);
-  TColStd_Array2OfReal weights(1, nu, 1, 3);
   for (int j = 0; j < 3; ++j) {
     if (cp[j]->NbPoles() != nu || cw[j]->NbPoles() != nu) throw RoundingError(ErrorCode::SurfaceFailed, "inconsistent profile lofts");
-    for (int i = 1; i <= nu; ++i) {
-      const double w = cw[j]->Pole(i).X();
-      if (!(w > 1e-9)) throw RoundingError(ErrorCode::SurfaceFailed, "the rounding surface has a non-positive weight: profiles change too fast");
-      poles(i, j + 1) = gp_Pnt(cp[j]->Pole(i).XYZ() / w);
-      weights(i, j + 1) = w;
+    for (int i = 1; i <= nu; ++i) out.poles[j].push_back(to_vec(cp[j]->Pole(i).XYZ())), out.weights[j].push_back(cw[j]->Pole(i).X());
+  }
+  for (int i = 1; i <= cp[0]->NbKnots(); ++i) out.knots.push_back(cp[0]->Knot(i)), out.mults.push_back(cp[0]->Multiplicity(i));
+  return out;
+}
+
+// Joins the carried station to the loft's first (at_start) or last end by a straight cubic piece: its
+// poles a third and two thirds of the way (homogeneous, one weight: the section's points move linearly).
+void add_carried_piece(LoftRows& rows, const ProfileStation& carried, bool at_start) {
+  Vec3 end[3];
+  double w[3];
+  profile_arc(carried, end, w);
+  for (int j = 0; j < 3; ++j) {
+    auto& P = rows.poles[j];
+    auto& W = rows.weights[j];
+    const Vec3 from = at_start ? P.front() : P.back(), to = end[j] * w[j];
+    const double w_from = at_start ? W.front() : W.back();
+    const Vec3 piece[3] = {from + (to - from) / 3, from + 2 * (to - from) / 3, to};
+    for (const Vec3& q : piece) {
+      if (at_start) P.insert(P.begin(), q), W.insert(W.begin(), w_from);
+      else P.push_back(q), W.push_back(w_from);
     }
   }
-  TColStd_Array1OfReal uknots(1, cp[0]->NbKnots()), vknots(1, 2);
-  TColStd_Array1OfInteger umults(1, cp[0]->NbKnots()), vmults(1, 2);
-  cp[0]->Knots(uknots);
-  cp[0]->Multiplicities(umults);
+  if (at_start) {
+    rows.mults.front() = 3;
+    rows.knots.insert(rows.knots.begin(), carried.s), rows.mults.insert(rows.mults.begin(), 4);
+  } else {
+    rows.mults.back() = 3;
+    rows.knots.push_back(carried.s), rows.mults.push_back(4);
+  }
+}
+
+}  // namespace
+
+RoundingSurface loft_profiles(const std::vector<ProfileStation>& stations, bool closed, double period) {
+  const bool carried[2] = {!closed && stations.front().carried, !closed && stations.back().carried};
+  const std::vector<ProfileStation> lofted(stations.begin() + carried[0], stations.end() - carried[1]);
+  if (lofted.size() < 4) throw RoundingError(ErrorCode::SurfaceFailed, "too few profiles to loft a rounding surface");
+  LoftRows rows = interpolate_stations(lofted, closed, period);
+  if (carried[0]) add_carried_piece(rows, stations.front(), true);
+  if (carried[1]) add_carried_piece(rows, stations.back(), false);
+  const int nu = int(rows.poles[0].size());
+  TColgp_Array2OfPnt poles(1, nu, 1, 3);
+  TColStd_Array2OfReal weights(1, nu, 1, 3);
+  for (int j = 0; j < 3; ++j)
+    for (int i = 1; i <= nu; ++i) {
+      const double w = rows.weights[j][i - 1];
+      if (!(w > 1e-9)) throw RoundingError(ErrorCode::SurfaceFailed, "the rounding surface has a non-positive weight: profiles change too fast");
+      poles(i, j + 1) = gp_Pnt(to_pnt(rows.poles[j][i - 1] / w));
+      weights(i, j + 1) = w;
+    }
+  const int nk = int(rows.knots.size());
+  TColStd_Array1OfReal uknots(1, nk), vknots(1, 2);
+  TColStd_Array1OfInteger umults(1, nk), vmults(1, 2);
+  for (int i = 1; i <= nk; ++i) uknots(i) = rows.knots[i - 1], umults(i) = rows.mults[i - 1];
   vknots(1) = 0, vknots(2) = 1, vmults(1) = vmults(2) = 3;
+  std::vector<double> params;
+  for (const ProfileStation& st : stations) params.push_back(st.s);
 
   RoundingSurface out;
   out.closed = closed;
   out.surface = new Geom_BSplineSurface(poles, weights, uknots, vknots, umults, vmults, 3, 2, closed, false);
   out.adaptor = new GeomAdaptor_Surface(out.surface);
-  out.u_first = closed ? params.front() : params.front();
+  out.u_first = params.front();
   out.u_last = closed ? params.front() + period : params.back();
+  out.u_straight[0] = carried[0] ? lofted.front().s : out.u_first;
+  out.u_straight[1] = carried[1] ? lofted.back().s : out.u_last;
   BRepBuilderAPI_MakeFace mk(out.surface, out.u_first, out.u_last, 0.0, 1.0, Precision::Confusion());
   if (!mk.IsDone()) throw RoundingError(ErrorCode::SurfaceFailed, "OCCT could not make a face of the rounding surface");
   out.face = mk.Face();

@@ -160,6 +160,37 @@ RoundMeshStats mesh_rounding_surface(const RoundingSurface& surface, const std::
     return out;
   };
   std::vector<double> U = row_samples(us, 1.0);
+  // A carried end's straight piece (loft_profiles) is as long on each row as that row's point moves to the
+  // end face: from nothing beside a contact that meets the face where the balls stop, to the setback. Each
+  // inner row spaces its own points there, as the step beyond; a row whose piece is shorter than half a step
+  // keeps only its end point on the face (the first sample beyond too near it is dropped).
+  auto samples_on_row = [&](const std::vector<double>& samples, double v) {
+    if (surface.closed || (surface.u_straight[0] <= u_lo && surface.u_straight[1] >= u_hi)) return samples;
+    std::vector<double> mid;
+    for (double u : samples)
+      if (u > surface.u_straight[0] && u < surface.u_straight[1]) mid.push_back(u);
+    if (mid.size() < 2) return samples;
+    std::vector<double> out;
+    for (int end = 0; end < 2; ++end) {
+      const double face_u = end ? u_hi : u_lo, join_u = surface.u_straight[end];
+      if (end) out.insert(out.end(), mid.begin(), mid.end());
+      std::vector<double> piece{face_u};
+      if (join_u != face_u) {
+        const Vec3 at_face = surface.value(face_u, v);
+        const double step = end ? mid.back() - mid[mid.size() - 2] : mid[1] - mid[0];
+        const int n = int(std::lround((at_face - surface.value(join_u, v)).norm() / step));
+        for (int k = 1; k < n; ++k) piece.push_back(face_u + (join_u - face_u) * k / n);
+        const double u_near = end ? mid.back() : mid.front();
+        if (n == 0 && mid.size() > 2 && (surface.value(u_near, v) - at_face).norm() < 0.5 * step) {
+          if (end) out.pop_back();
+          else mid.erase(mid.begin());
+        }
+      }
+      if (end) out.insert(out.end(), piece.rbegin(), piece.rend());
+      else out.insert(out.end(), piece.begin(), piece.end());
+    }
+    return out;
+  };
 
   // Graded rows beside a trim line whose points lie much closer together than the first inner row is far
   // (a fine mesh cut by the contact line: a vertex just off the line leaves cut points a fifth of an
@@ -195,8 +226,9 @@ RoundMeshStats mesh_rounding_surface(const RoundingSurface& surface, const std::
     inner.clear();
     tris.clear();
     std::vector<std::vector<RowPoint>> rows{first_row};
-    auto add_row = [&](const std::vector<double>& samples, double v) {
+    auto add_row = [&](const std::vector<double>& row_u, double v) {
       poll_cancel();
+      const std::vector<double> samples = samples_on_row(row_u, v);
       std::vector<RowPoint> row;
       for (size_t i = 0; i < samples.size(); ++i) {
         if (surface.closed && i + 1 == samples.size()) {  // a loop's row ends where it began

@@ -165,6 +165,15 @@ def box_corner():
     return s, [e for e in s.Edges if any((v.Point - at).Length < TOL for v in e.Vertexes)]
 
 
+def box_top_corner():
+    """Two convex rounds meeting at a box corner whose third (vertical) edge stays sharp: the top edges at
+    (100, 60, 40) of a 100 x 60 x 40 box (OCCT mitres the rounds: they meet along one curve in the plane
+    bisecting the two edges)."""
+    s = Part.makeBox(100, 60, 40)
+    at = V(100, 60, 40)
+    return s, [e for e in s.Edges if any((v.Point - at).Length < TOL for v in e.Vertexes) and abs(e.Vertexes[0].Point.z - e.Vertexes[1].Point.z) < TOL]
+
+
 def s_outline():
     """Plan view S: line, convex arc R20, concave arc R30, line -- tangent throughout, from (0,60) to (120,10)."""
     return Part.Wire([
@@ -389,7 +398,9 @@ SPECS = {
     "pocket_edge_draft": (pocket_edge(10.0), 2.0, None),
     "box_oblique_end": (box_oblique_end, 4.0, None),
     "pocket_rim_square": (pocket_rim_square(), 2.0, None),
+    "pocket_rim_draft": (pocket_rim_square(10.0), 2.0, None),
     "box_corner": (box_corner, 5.0, None),
+    "box_top_corner": (box_top_corner, 5.0, None),
     "box_var": (box, None, [(0.0, 2.0), (1.0, 8.0)]),
     "lchannel_var": (lchannel, None, [(0.0, 2.0), (1.0, 6.0)]),
     "s_chain_var3": (s_plate, None, [(0.0, 2.5), (0.5, 5.0), (1.0, 3.0)]),

@@ -51,13 +51,26 @@ def test_two_rounded_chains_leave_a_closed_clean_mesh(two_laws):
     assert two_laws.report["max_deviation"] <= 6.0 / 100
 
 
-def test_chains_meeting_at_a_corner_are_refused_and_the_input_kept(box):
+def test_two_convex_rounds_meet_at_their_mitre_and_the_input_is_kept(box):
+    # The back and the end face's top edges meet at (X, Y, Z), the vertical edge there stays sharp, r = 3:
+    # as OCCT's fillet, each round is its cylinder up to the plane x - X = y - Y bisecting the two edges, so
+    # every vertex of the corner's cell (x > X - r, y > Y - r, z > Z - r) lies on the cylinder of its side.
+    r = 3.0
     before = meshconv.mesh_to_arrays(box)
-    corner_edge_seed = V(X, Y / 2, Z)  # the top edge of the end face x = X meets the back edge at (X, Y, Z)
-    with pytest.raises(MeshRound.RoundingError, match=r"meet at \(100, 60, 40\)"):
-        MeshRound.round_edges(box, [BOX_SEED, corner_edge_seed], 3.0)
+    out = MeshRound.round_edges(box, [BOX_SEED, V(X, Y / 2, Z)], r).mesh
     after = meshconv.mesh_to_arrays(box)
     assert np.array_equal(before[0], after[0]) and np.array_equal(before[1], after[1])
+    assert out.isSolid() and not out.hasNonManifolds() and not out.hasSelfIntersections()
+    pts = np.array([[p.x, p.y, p.z] for p in out.Points])
+    f32 = 2e-5
+    cell = np.all(pts > np.array([X - r, Y - r, Z - r]) + f32, axis=1)
+    assert cell.sum() > 10
+    back = pts[:, 0] - X <= pts[:, 1] - Y  # the back edge's side of the mitre plane
+    to_back_axis = np.hypot(pts[:, 1] - (Y - r), pts[:, 2] - (Z - r))
+    to_end_axis = np.hypot(pts[:, 0] - (X - r), pts[:, 2] - (Z - r))
+    on_own = np.where(back, to_back_axis, to_end_axis)
+    assert np.abs(on_own[cell] - r).max() < 1e-4
+    assert np.any(cell & (np.abs(pts[:, 0] - X - (pts[:, 1] - Y)) < f32) & (pts[:, 2] < Z - 0.5 * r))  # the mitre's curve
 
 
 def test_three_rounds_at_a_corner_meet_in_the_corner_ball(box):

@@ -33,6 +33,10 @@ struct ProfileStation {
   Vec3 contact[2];              // contact on side A, side B
   ContactRegion region[2]{};
   EndCut cut;                   // a capped end's station: its arc is the section's, moved onto the end face
+  // A capped end's station set back from its end face (the face leans over the round): the previous
+  // (next) station's ball carried along the straight chain end to the chain's end, its arc then moved onto
+  // the face. The surface between the two is that straight extrusion, cut by the face (see loft_profiles).
+  bool carried = false;
   double angle() const;         // opening angle of the profile arc (radians)
 };
 

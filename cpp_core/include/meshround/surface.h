@@ -16,6 +16,8 @@ struct RoundingSurface {
   TopoDS_Face face;
   bool closed = false;
   double u_first = 0, u_last = 0;  // u = arc length along the chain; v in [0, 1] from side A to side B
+  // Where a carried end's straight piece joins the loft (loft_profiles); u_first / u_last where there is none.
+  double u_straight[2] = {0, 0};
 
   Vec3 value(double u, double v) const;
   // Point, d/du and d/dv.
@@ -31,7 +33,10 @@ struct RoundingSurface {
 // poles (3) and weights (1, cos(angle/2), 1); at a capped end (st.cut) the poles moved onto the end face.
 void profile_arc(const ProfileStation& st, Vec3 poles[3], double weights[3]);
 
-// Lofts the profiles (at least 4, sorted by s; for a loop, s in [0, period) and no repeat).
+// Lofts the profiles (at least 4, sorted by s; for a loop, s in [0, period) and no repeat). A carried end
+// station (ProfileStation::carried) is joined to its neighbour by a straight piece, C0 in u there: each
+// point of the neighbour's arc moves along the chain in proportion to u until it reaches the end face (a
+// cubic through that kink would overshoot past the face where a contact barely moves).
 RoundingSurface loft_profiles(const std::vector<ProfileStation>& stations, bool closed, double period);
 
 // OCCT BRep text of a face (what FreeCAD's Part.Shape.importBrepFromString reads).
