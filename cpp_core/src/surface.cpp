@@ -162,15 +162,13 @@ RoundingSurface loft_profiles(const std::vector<ProfileStation>& stations, bool 
   TColStd_Array1OfInteger umults(1, nk), vmults(1, 2);
   for (int i = 1; i <= nk; ++i) uknots(i) = rows.knots[i - 1], umults(i) = rows.mults[i - 1];
   vknots(1) = 0, vknots(2) = 1, vmults(1) = vmults(2) = 3;
-  std::vector<double> params;
-  for (const ProfileStation& st : stations) params.push_back(st.s);
 
   RoundingSurface out;
   out.closed = closed;
   out.surface = new Geom_BSplineSurface(poles, weights, uknots, vknots, umults, vmults, 3, 2, closed, false);
   out.adaptor = new GeomAdaptor_Surface(out.surface);
-  out.u_first = params.front();
-  out.u_last = closed ? params.front() + period : params.back();
+  out.u_first = stations.front().s;
+  out.u_last = closed ? out.u_first + period : stations.back().s;
   out.u_straight[0] = carried[0] ? lofted.front().s : out.u_first;
   out.u_straight[1] = carried[1] ? lofted.back().s : out.u_last;
   BRepBuilderAPI_MakeFace mk(out.surface, out.u_first, out.u_last, 0.0, 1.0, Precision::Confusion());

@@ -166,29 +166,30 @@ RoundMeshStats mesh_rounding_surface(const RoundingSurface& surface, const std::
   // keeps only its end point on the face (the first sample beyond too near it is dropped).
   auto samples_on_row = [&](const std::vector<double>& samples, double v) {
     if (surface.closed || (surface.u_straight[0] <= u_lo && surface.u_straight[1] >= u_hi)) return samples;
-    std::vector<double> mid;
+    std::vector<double> mid;  // the samples on the lofted part
     for (double u : samples)
       if (u > surface.u_straight[0] && u < surface.u_straight[1]) mid.push_back(u);
     if (mid.size() < 2) return samples;
-    std::vector<double> out;
-    for (int end = 0; end < 2; ++end) {
+    // One end's piece, from the face towards the join (which is not included).
+    auto piece_at = [&](int end) {
       const double face_u = end ? u_hi : u_lo, join_u = surface.u_straight[end];
-      if (end) out.insert(out.end(), mid.begin(), mid.end());
       std::vector<double> piece{face_u};
-      if (join_u != face_u) {
-        const Vec3 at_face = surface.value(face_u, v);
-        const double step = end ? mid.back() - mid[mid.size() - 2] : mid[1] - mid[0];
-        const int n = int(std::lround((at_face - surface.value(join_u, v)).norm() / step));
-        for (int k = 1; k < n; ++k) piece.push_back(face_u + (join_u - face_u) * k / n);
-        const double u_near = end ? mid.back() : mid.front();
-        if (n == 0 && mid.size() > 2 && (surface.value(u_near, v) - at_face).norm() < 0.5 * step) {
-          if (end) out.pop_back();
-          else mid.erase(mid.begin());
-        }
+      if (join_u == face_u) return piece;
+      const Vec3 at_face = surface.value(face_u, v);
+      const double step = end ? mid.back() - mid[mid.size() - 2] : mid[1] - mid[0];
+      const int n = int(std::lround((at_face - surface.value(join_u, v)).norm() / step));
+      for (int k = 1; k < n; ++k) piece.push_back(face_u + (join_u - face_u) * k / n);
+      const double u_near = end ? mid.back() : mid.front();
+      if (n == 0 && mid.size() > 2 && (surface.value(u_near, v) - at_face).norm() < 0.5 * step) {
+        if (end) mid.pop_back();
+        else mid.erase(mid.begin());
       }
-      if (end) out.insert(out.end(), piece.rbegin(), piece.rend());
-      else out.insert(out.end(), piece.begin(), piece.end());
-    }
+      return piece;
+    };
+    std::vector<double> out = piece_at(0);
+    const std::vector<double> last = piece_at(1);
+    out.insert(out.end(), mid.begin(), mid.end());
+    out.insert(out.end(), last.rbegin(), last.rend());
     return out;
   };
 
