@@ -95,9 +95,11 @@ def test_a_token_never_cancelled_changes_nothing(box):
 def test_cancel_from_another_thread_stops_a_run_on_a_1m_facet_die(big_die):
     vertices, triangles, seed = big_die
     kept = vertices.copy(), triangles.copy()
-    started = time.perf_counter()
-    api.round_arrays(vertices, triangles, [seed], 5.0)
-    full = time.perf_counter() - started
+    full = float("inf")  # the warm run's time: a first run (cold caches) can take half as long again
+    for _ in range(2):
+        started = time.perf_counter()
+        api.round_arrays(vertices, triangles, [seed], 5.0)
+        full = min(full, time.perf_counter() - started)
     latencies = {}
     for share in (0.3, 0.7):
         error, latency = cancelled_run(
