@@ -140,6 +140,11 @@ std::vector<ProfileStation> sample_profiles(const SpineContext& ctx, const Radiu
 }
 
 
+// The share of a chain its two ends' setbacks may take: the rest, the balls' own stretch, must hold
+// its profile stations. At a sphere corner the rounds' ends are measured on balls that stand clear of the
+// other rounds only up to half a chain (longer setbacks are refused, naming the chain).
+constexpr double kMaxSetbackShare = 0.9, kMaxSetbackShareAtSphere = 0.5;
+
 // The profiles of a chain's round, its capped ends cut by their end faces (ends.h): where an end face
 // leans over the round, the balls stop short of it (their setback) and the last one is carried on along
 // the chain to the face; every capped end's profile is then moved onto its face's plane.
@@ -162,9 +167,24 @@ std::vector<ProfileStation> end_cut_profiles(const SpineContext& ctx, const Radi
     // corner, on the ball at its plane or before it (one past it would stand on the other rounds' faces).
     double to_end = std::min(2 * law.max_radius(), 0.25 * L);
     if (corner && corner->sphere) to_end = std::min(L, std::max(to_end, cut[end].past(end ? chain.points.back() : chain.points.front())));
-    setback[end] = end_cut_setback(station(ctx, law, end ? L - to_end : to_end), to_end, cut[end]);
+    auto measured_at = [&](double d) { return end_cut_setback(station(ctx, law, end ? L - d : d), d, cut[end]); };
+    // A radius over a quarter of the chain: that ball may be past where the balls stop (standing on the
+    // other round's side of a mitre); then the one at the chain's middle, then the one as far from this end
+    // as the first is from the other end.
+    const bool retry = corner != nullptr && !corner->sphere;
+    const double tries[] = {to_end, 0.5 * L, L - to_end};
+    for (int k = 0; k < 3; ++k) {
+      try {
+        setback[end] = measured_at(tries[k]);
+        break;
+      } catch (const RoundingError& e) {
+        if (e.code != ErrorCode::RadiusTooLarge || !retry || k == 2 || tries[k + 1] <= tries[k]) throw;
+      }
+    }
   }
-  if (setback[0] + setback[1] > 0.5 * L)
+  bool at_sphere = false;
+  for (const CornerEnd& c : net.corners) at_sphere |= c.sphere;
+  if (setback[0] + setback[1] > (at_sphere ? kMaxSetbackShareAtSphere : kMaxSetbackShare) * L)
     throw RoundingError(ErrorCode::CornerNotBlendable, "the chain through " + format_point(chain.point_at(0.5 * L)) + " is too short for its round to "
                         "run on to the end faces leaning over it (" + format_number(setback[0] + setback[1]) + " mm of its " +
                         format_number(L) + " mm); try a smaller radius");
@@ -236,11 +256,40 @@ int count_thin_facets(const MeshTopology& mesh, const MeshEdit& edit, double* mi
   return thin;
 }
 
+RoundedChain round_one_chain(const MeshTopology& mesh, const Vec3& seed, const RoundOptions& opt, RoundReport& report,
+                             Points& V_out, Triangles& F_out, const NetworkPart& net = {}, std::vector<Vec3>* round_points = nullptr,
+                             bool is_probe = false, bool split = false);
+
+// The room probe: the chain is rounded again (and thrown away) at wider reaches, narrowest first (a
+// wider band costs more); the first of kWiderReaches that makes no facet under kThinDeg goes into
+// rep.reach_for_room (0: none does).
+void probe_reach_for_room(const MeshTopology& mesh, const Vec3& seed, const RoundOptions& opt, const NetworkPart& net,
+                          bool split, ChainReport& rep) {
+  auto gives_room = [&](double wider) {
+    RoundOptions o = opt;
+    o.reach = wider * opt.reach;
+    RoundReport scratch;
+    Points V;
+    Triangles F;
+    try {
+      const RoundedChain probe = round_one_chain(mesh, seed, o, scratch, V, F, net, nullptr, true, split);
+      if (probe.report.thin_facets > 0) return false;
+    } catch (const RoundingError& e) {
+      if (e.code == ErrorCode::Cancelled) throw;
+      return false;  // e.g. the wider reach runs into another sharp feature
+    }
+    rep.reach_for_room = o.reach, rep.min_angle_at_reach_for_room = scratch.min_new_angle_deg;
+    return true;
+  };
+  for (double wider : kWiderReaches)
+    if (gives_room(wider)) return;
+}
+
 // `split`: the mesh is the input already split along the chain's end segments (ends.h). `net`: its corners
 // with other chains of the call; `round_points` (if given) gets the round's vertices.
 RoundedChain round_one_chain(const MeshTopology& mesh, const Vec3& seed, const RoundOptions& opt, RoundReport& report,
-                             Points& V_out, Triangles& F_out, const NetworkPart& net = {}, std::vector<Vec3>* round_points = nullptr,
-                             bool is_probe = false, bool split = false) {
+                             Points& V_out, Triangles& F_out, const NetworkPart& net, std::vector<Vec3>* round_points,
+                             bool is_probe, bool split) {
   PassTimer timer(report);
   const double r_max = opt.max_radius();
   SharpChain chain = trace_chain(mesh, seed, opt.feature_angle_deg, opt.reach * r_max);
@@ -356,25 +405,9 @@ RoundedChain round_one_chain(const MeshTopology& mesh, const Vec3& seed, const R
 
   double min_new = 180, min_input = 180;
   rep.thin_facets = count_thin_facets(mesh, edit, &min_new, &min_input);
-  // Thin facets the input does not explain: would a larger reach give them room? The chain is rounded
-  // again (and thrown away) at each wider reach until one makes no facet under kThinDeg.
+  // Thin facets the input does not explain: would a larger reach give them room?
   if (!is_probe && rep.thin_facets > 0 && min_input >= kThinDeg) {
-    for (double wider : kWiderReaches) {
-      RoundOptions o = opt;
-      o.reach = wider * opt.reach;
-      RoundReport scratch;
-      Points V;
-      Triangles F;
-      try {
-        const RoundedChain probe = round_one_chain(mesh, seed, o, scratch, V, F, net, nullptr, true, split);
-        if (probe.report.thin_facets > 0) continue;
-      } catch (const RoundingError& e) {
-        if (e.code == ErrorCode::Cancelled) throw;
-        continue;  // e.g. the wider reach runs into another sharp feature
-      }
-      rep.reach_for_room = o.reach, rep.min_angle_at_reach_for_room = scratch.min_new_angle_deg;
-      break;
-    }
+    probe_reach_for_room(mesh, seed, opt, net, split, rep);
     timer.done("room");
   }
 

@@ -27,14 +27,18 @@ double free_apex_angle(const std::vector<Eigen::Vector2d>& ring, int a, int b, c
 int best_vertex_apex(const std::vector<Vec3>& P, const std::vector<Eigen::Vector2d>& Q, const std::vector<int>& ring, int i,
                      double* quality) {
   const int m = int(ring.size()), a = ring[i], b = ring[(i + 1) % m];
-  int best = -1;
-  *quality = 0;
+  // Best shaped first (ties in ring order): the first inside the ring is the answer, and the costly
+  // inside test runs on a few vertices, not on all.
+  std::vector<std::pair<double, int>> apexes;
   for (int v : ring) {
-    if (v == a || v == b) continue;
-    const double q = smallest_angle(P[a], P[b], P[v]);
-    if (q > *quality && triangle_in_ring(Q, ring, a, b, v)) *quality = q, best = v;
+    const double q = v != a && v != b ? smallest_angle(P[a], P[b], P[v]) : 0.0;
+    if (q > 0) apexes.push_back({q, v});  // (no NaN in the sort)
   }
-  return best;
+  std::stable_sort(apexes.begin(), apexes.end(), [](const auto& x, const auto& y) { return x.first > y.first; });
+  *quality = 0;
+  for (const auto& [q, v] : apexes)
+    if (triangle_in_ring(Q, ring, a, b, v)) return *quality = q, v;
+  return -1;
 }
 
 // Splits off the triangles of sides that no inner point can mend: sides (shared with untouched facets,
@@ -59,15 +63,22 @@ std::vector<std::vector<int>> split_off_unmendable_sides(const std::vector<Vec3>
     for (int v : ring) ring_q.push_back(Q[v]);
     const int m = int(ring.size());
     int side = -1, apex = -1;
-    double longest = 0;
+    // The longest side that qualifies (ties in ring order): sides tried longest first.
+    std::vector<std::pair<double, int>> sides;
     for (int i = 0; i < m; ++i) {
       const double length = (ring_q[(i + 1) % m] - ring_q[i]).norm();
-      if (length <= longest) continue;
+      if (length > 0) sides.push_back({length, i});  // (no NaN in the sort)
+    }
+    std::stable_sort(sides.begin(), sides.end(), [](const auto& x, const auto& y) { return x.first > y.first; });
+    for (const auto& [length, i] : sides) {
       const double free = free_apex_angle(ring_q, i, (i + 1) % m, refine, to_3d);
       if (free >= refine.quality_deg) continue;
       double q;
       const int v = best_vertex_apex(P, Q, ring, i, &q);
-      if (v >= 0 && q * 180 / M_PI > free) side = i, apex = v, longest = length;
+      if (v >= 0 && q * 180 / M_PI > free) {
+        side = i, apex = v;
+        break;
+      }
     }
     if (side < 0) {
       done.push_back(std::move(ring));

@@ -42,7 +42,11 @@ inline std::string round_case(const std::uint8_t* data, std::size_t size) {
     for (const RadiusControl& rc : c.options.radius_law) rmax = std::max(rmax, rc.radius);
     s.end_allowance = 1.5 * c.options.reach * rmax;
     const std::string bad = check_sound(s);
-    if (verbose()) std::fprintf(stderr, "rounded: %ld facets, %s\n", long(res.triangles.rows()), bad.empty() ? "sound" : bad.c_str());
+    if (verbose()) {
+      std::fprintf(stderr, "rounded: %ld facets, %s; seconds:", long(res.triangles.rows()), bad.empty() ? "sound" : bad.c_str());
+      for (const auto& [pass, t] : res.report.seconds) std::fprintf(stderr, " %s %.3f", pass.c_str(), t);
+      std::fprintf(stderr, "\n");
+    }
     if (!bad.empty()) return "unsound result: " + bad;
   } catch (const RoundingError& e) {
     if (verbose()) std::fprintf(stderr, "refused (%s): %s\n", error_code_name(e.code), e.what());

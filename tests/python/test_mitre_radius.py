@@ -1,0 +1,40 @@
+"""Large radii at a mitre: two top edges of a 100 x 60 x 40 box rounded into their corner at (100, 60, 40),
+the vertical edge there left sharp. OCCT's fillet fits any radius up to the box's height (40 mm); so must
+MeshRound. The balls stop r before the corner (their setback) and are measured on a ball clear of the
+mitre: for a radius over a quarter of the 60 mm edge, that ball is found further along the chain (before,
+r = 15.5 to 39.9 was refused as too large). Reference: OCCT's fillet of the CAD box, both ways."""
+import pytest
+
+import cases
+import reference
+
+import MeshRound
+
+LIMIT = 0.01 + reference.MEASURE  # / r: the tolerance r/100 plus the yardstick's own precision
+
+
+@pytest.mark.parametrize("radius, variant", [(20.0, "fine"), (35.0, "coarse"), (35.0, "fine")])
+def test_a_radius_past_a_quarter_of_the_edge_rounds_like_occt(radius, variant):
+    case = cases.Case(f"box_top_corner_r{radius:g}", cases.box_top_corner, radius)
+    mesh = case.mesh(variant)
+    before = mesh.Topology
+    res = MeshRound.round_edges(mesh, case.seeds, radius, tolerance=case.tolerance)
+    assert mesh.Topology == before
+    row = reference.score(case, mesh, res.mesh, res.report)
+    assert row["dev_out_to_ref"] <= LIMIT and row["dev_ref_to_out"] <= LIMIT, row
+    assert row["boundary_edges_out"] == row["boundary_edges_in"] == 0
+    assert row["nonmanifold_edges"] == 0 and row["misoriented_edges"] == 0 and row["degenerate_facets"] == 0
+    assert row["orientation_kept"] and not row["self_intersections"]
+    assert row["far_vertices_lost"] == 0
+
+
+def test_a_radius_past_the_face_is_refused_naming_it():
+    """40.1 mm does not fit on the 40 mm high side faces: refused, the input intact."""
+    solid, edges = cases.box_top_corner()  # (OCCT's fillet itself fails at this radius)
+    mesh = cases.MeshPart.meshFromShape(Shape=solid, MaxLength=2.5 * 40.1)
+    seeds = [e.valueAt(0.5 * (e.FirstParameter + e.LastParameter)) for e in edges]
+    before = mesh.Topology
+    with pytest.raises(MeshRound.RoundingError) as err:
+        MeshRound.round_edges(mesh, seeds, 40.1)
+    assert err.value.code == "radius_too_large"
+    assert mesh.Topology == before
