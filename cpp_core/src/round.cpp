@@ -155,6 +155,7 @@ std::vector<ProfileStation> end_cut_profiles(const SpineContext& ctx, const Radi
   const double L = chain.length;
   EndCut cut[2];
   double setback[2] = {0, 0};
+  bool at_sphere = false;
   for (int end = 0; end < 2 && !chain.closed; ++end) {
     cut[end] = end_face_cut(ctx.mesh, chain, ctx.base, end == 0);
     const CornerEnd* corner = corner_at(net, end ? chain.points.back() : chain.points.front());
@@ -167,23 +168,21 @@ std::vector<ProfileStation> end_cut_profiles(const SpineContext& ctx, const Radi
     // corner, on the ball at its plane or before it (one past it would stand on the other rounds' faces).
     double to_end = std::min(2 * law.max_radius(), 0.25 * L);
     if (corner && corner->sphere) to_end = std::min(L, std::max(to_end, cut[end].past(end ? chain.points.back() : chain.points.front())));
-    auto measured_at = [&](double d) { return end_cut_setback(station(ctx, law, end ? L - d : d), d, cut[end]); };
-    // A radius over a quarter of the chain: that ball may be past where the balls stop (standing on the
-    // other round's side of a mitre); then the one at the chain's middle, then the one as far from this end
-    // as the first is from the other end.
-    const bool retry = corner != nullptr && !corner->sphere;
-    const double tries[] = {to_end, 0.5 * L, L - to_end};
-    for (int k = 0; k < 3; ++k) {
+    at_sphere |= corner && corner->sphere;
+    // At a mitre, a radius over a quarter of the chain can put that ball past where the balls stop, on the
+    // other round's side (refused there as too large): then the ball at the chain's middle is measured,
+    // then the one as far from this end as the first is from the other end.
+    std::vector<double> tries{to_end};
+    if (corner && !corner->sphere) tries.insert(tries.end(), {0.5 * L, L - to_end});
+    for (size_t k = 0;; ++k) {
       try {
-        setback[end] = measured_at(tries[k]);
+        setback[end] = end_cut_setback(station(ctx, law, end ? L - tries[k] : tries[k]), tries[k], cut[end]);
         break;
       } catch (const RoundingError& e) {
-        if (e.code != ErrorCode::RadiusTooLarge || !retry || k == 2 || tries[k + 1] <= tries[k]) throw;
+        if (e.code != ErrorCode::RadiusTooLarge || k + 1 == tries.size()) throw;
       }
     }
   }
-  bool at_sphere = false;
-  for (const CornerEnd& c : net.corners) at_sphere |= c.sphere;
   if (setback[0] + setback[1] > (at_sphere ? kMaxSetbackShareAtSphere : kMaxSetbackShare) * L)
     throw RoundingError(ErrorCode::CornerNotBlendable, "the chain through " + format_point(chain.point_at(0.5 * L)) + " is too short for its round to "
                         "run on to the end faces leaning over it (" + format_number(setback[0] + setback[1]) + " mm of its " +
