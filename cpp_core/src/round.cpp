@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <exception>
 #include <cmath>
 #include <array>
 #include <set>
@@ -169,19 +170,26 @@ std::vector<ProfileStation> end_cut_profiles(const SpineContext& ctx, const Radi
     double to_end = std::min(2 * law.max_radius(), 0.25 * L);
     if (corner && corner->sphere) to_end = std::min(L, std::max(to_end, cut[end].past(end ? chain.points.back() : chain.points.front())));
     at_sphere |= corner && corner->sphere;
-    // At a mitre, a radius over a quarter of the chain can put that ball past where the balls stop, on the
-    // other round's side (refused there as too large): then the ball at the chain's middle is measured,
-    // then the one as far from this end as the first is from the other end.
+    // A radius over a quarter of the chain can put that ball where the balls of the other end stop short
+    // of a mitre, on the other round's side (refused there as too large). Then balls elsewhere on the
+    // chain are measured (on a chain of one section the setback is the same from any of them): further
+    // along, as far as a setback may reach, then nearer this end. None clear: the first one's refusal.
     std::vector<double> tries{to_end};
-    if (corner && !corner->sphere) tries.insert(tries.end(), {0.5 * L, L - to_end});
-    for (size_t k = 0;; ++k) {
+    if (!(corner && corner->sphere))
+      for (double share : {0.5, 0.75, kMaxSetbackShare, 0.1, 0.05})
+        if (std::abs(share * L - to_end) > 1e-9 * L) tries.push_back(share * L);
+    std::exception_ptr first_refusal;
+    for (size_t k = 0; k < tries.size(); ++k) {
       try {
         setback[end] = end_cut_setback(station(ctx, law, end ? L - tries[k] : tries[k]), tries[k], cut[end]);
+        first_refusal = nullptr;
         break;
       } catch (const RoundingError& e) {
-        if (e.code != ErrorCode::RadiusTooLarge || k + 1 == tries.size()) throw;
+        if (e.code != ErrorCode::RadiusTooLarge) throw;
+        if (!first_refusal) first_refusal = std::current_exception();
       }
     }
+    if (first_refusal) std::rethrow_exception(first_refusal);
   }
   if (setback[0] + setback[1] > (at_sphere ? kMaxSetbackShareAtSphere : kMaxSetbackShare) * L)
     throw RoundingError(ErrorCode::CornerNotBlendable, "the chain through " + format_point(chain.point_at(0.5 * L)) + " is too short for its round to "

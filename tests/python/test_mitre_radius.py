@@ -2,10 +2,12 @@
 the vertical edge there left sharp. OCCT's fillet fits any radius up to the box's height (40 mm); so must
 MeshRound. The balls stop r before the corner (their setback) and are measured on a ball clear of the
 mitre: for a radius over a quarter of the 60 mm edge, that ball is found further along the chain (before,
-r = 15.5 to 39.9 was refused as too large). Reference: OCCT's fillet of the CAD box, both ways."""
+r = 15.5 to 39.9 was refused as too large). On a box only 30 mm deep the two ends' setbacks may take 0.9 of
+that edge: 26.4 rounds, 26.6 is refused naming the chain. Reference: OCCT's fillet of the CAD box, both ways."""
 import pytest
 
 import cases
+import Part
 import reference
 
 import MeshRound
@@ -13,9 +15,18 @@ import MeshRound
 LIMIT = 0.01 + reference.MEASURE  # / r: the tolerance r/100 plus the yardstick's own precision
 
 
-@pytest.mark.parametrize("radius, variant", [(20.0, "fine"), (35.0, "coarse"), (35.0, "fine")])
-def test_a_radius_past_a_quarter_of_the_edge_rounds_like_occt(radius, variant):
-    case = cases.Case(f"box_top_corner_r{radius:g}", cases.box_top_corner, radius)
+def shallow_top_corner():
+    """The two top edges at (100, 30, 40) of a 100 x 30 x 40 box: the mitred edge is 30 mm long."""
+    s = Part.makeBox(100, 30, 40)
+    at = cases.V(100, 30, 40)
+    return s, [e for e in s.Edges if any((v.Point - at).Length < cases.TOL for v in e.Vertexes)
+               and abs(e.Vertexes[0].Point.z - e.Vertexes[1].Point.z) < cases.TOL]
+
+
+@pytest.mark.parametrize("builder, radius, variant", [(cases.box_top_corner, 20.0, "fine"), (cases.box_top_corner, 35.0, "coarse"),
+                                                      (cases.box_top_corner, 35.0, "fine"), (shallow_top_corner, 26.4, "fine")])
+def test_a_radius_past_a_quarter_of_the_edge_rounds_like_occt(builder, radius, variant):
+    case = cases.Case(f"{builder.__name__}_r{radius:g}", builder, radius)
     mesh = case.mesh(variant)
     before = mesh.Topology
     res = MeshRound.round_edges(mesh, case.seeds, radius, tolerance=case.tolerance)
@@ -38,3 +49,13 @@ def test_a_radius_past_the_face_is_refused_naming_it():
         MeshRound.round_edges(mesh, seeds, 40.1)
     assert err.value.code == "radius_too_large"
     assert mesh.Topology == before
+
+
+def test_setbacks_past_most_of_the_edge_are_refused_naming_the_chain():
+    """26.6 mm on the 30 mm edge: the two ends' setbacks would take more than 0.9 of it."""
+    solid, edges = shallow_top_corner()
+    mesh = cases.MeshPart.meshFromShape(Shape=solid, MaxLength=2.0)
+    seeds = [e.valueAt(0.5 * (e.FirstParameter + e.LastParameter)) for e in edges]
+    with pytest.raises(MeshRound.RoundingError) as err:
+        MeshRound.round_edges(mesh, seeds, 26.6)
+    assert err.value.code == "corner_not_blendable" and "too short" in str(err.value)
