@@ -337,9 +337,18 @@ TrimLines trim_base_meshes(const MeshTopology& mesh, const SharpChain& chain, co
       }
       if (vs[a].d > 0) std::swap(a, b);  // a inside, b outside
       const Vec3 pa = edit.point(a), pb = edit.point(b);
-      // A vertex in the band on a capped end's plane, the other end past the plane: the plane's trace
-      // runs through the vertex itself.
-      if (std::abs(past_end(pa)) <= plane_slack && past_end(pb) > plane_slack) {
+      // The capped end whose plane the edge leaves the band through, if any: of the planes the outer end
+      // is past, the one crossed first (an edge may run from one end's plane to beyond the other's, or
+      // past both: a CAD facet spanning the whole chain).
+      const EndCut* beyond = nullptr;
+      double first_crossing = INFINITY;
+      for (const EndCut* c : cuts) {
+        if (!c || c->past(pb) <= plane_slack) continue;
+        const double fa = std::min(c->past(pa), 0.0), crossing = fa / (fa - c->past(pb));
+        if (crossing < first_crossing) first_crossing = crossing, beyond = c;
+      }
+      // A vertex in the band on that plane: the plane's trace runs through the vertex itself.
+      if (beyond && std::abs(beyond->past(pa)) <= plane_slack) {
         plane_points.insert(a);
         return a;
       }
@@ -361,9 +370,9 @@ TrimLines trim_base_meshes(const MeshTopology& mesh, const SharpChain& chain, co
       }
       // Cut on an end face's plane (the contact line is farther on): put onto the plane exactly.
       double u_line = u;
-      const bool on_plane = line_distance(pa + t * (pb - pa), u, &u_line) < -plane_slack && past_end(pb) > plane_slack;
+      const bool on_plane = beyond && line_distance(pa + t * (pb - pa), u, &u_line) < -plane_slack;
       if (on_plane) {
-        const double fa = past_end(pa), fb = past_end(pb);
+        const double fa = beyond->past(pa), fb = beyond->past(pb);
         t = std::clamp(fa / (fa - fb), 0.0, 1.0);
       }
       const int id = edit.add_point(pa + t * (pb - pa));
@@ -431,6 +440,10 @@ TrimLines trim_base_meshes(const MeshTopology& mesh, const SharpChain& chain, co
       if (ring.size() == 3 && std::all_of(ring.begin(), ring.end(), [&](const Item& x) { return x.vertex < mesh.num_vertices(); })) {
         edit.removed.erase(f);
         --out.facets_cut;
+        // ... unless an edge of it was graded from the trim line (a CAD mesh's long edge from the band's
+        // corner): then it takes those points like any kept facet beside a graded piece.
+        for (int k = 0; k < 3; ++k)
+          if (kept_piece.count(edge_key(mesh.F(f, k), mesh.F(f, (k + 1) % 3)))) rebuild.insert(f);
         continue;
       }
       if (skipped && !band_before.empty()) band_before[0] = true;
