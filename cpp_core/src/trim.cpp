@@ -372,8 +372,7 @@ TrimLines trim_base_meshes(const MeshTopology& mesh, const SharpChain& chain, co
       double u_line = u;
       const bool on_plane = beyond && line_distance(pa + t * (pb - pa), u, &u_line) < -plane_slack;
       if (on_plane) {
-        const double fa = beyond->past(pa), fb = beyond->past(pb);
-        t = std::clamp(fa / (fa - fb), 0.0, 1.0);
+        t = std::clamp(first_crossing, 0.0, 1.0);
       }
       const int id = edit.add_point(pa + t * (pb - pa));
       edit.edge_point[key] = id;

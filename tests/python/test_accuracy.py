@@ -36,26 +36,17 @@ ROWS = {}
 
 # Known engine faults, one line per (property, case, mesh): expected to fail, and strict, so that a fix
 # turns the line into a failure until it is struck from this list.
-# Rims running into a pocket's next wall: the CAD mesh's facets span the whole edge and both end faces'
-# planes, and the drafted wall's coarse and CAD meshes leave a hole at the end cap; the output check refuses
-# them (result_invalid, the input intact).
-# The whole rim (four rounds mitred at the corners) on its coarse and CAD meshes: refused the same way.
-# A box corner's three rounds on its coarse and CAD meshes: each round stops at the corner ball's plane,
-# which crosses facets far larger than the round; the split there leaves a hole at the round's end.
-# Two top edges of a box mitred at its corner, and the drafted pocket's rim: their CAD meshes (and the
-# drafted rim's coarse one) are refused the same way (result_invalid / surface_failed: a contact line
-# across a facet that spans the whole face finds no trim points).
-_END_CAP_REFUSED = set()
-# CAD meshes at corners now round (deviation, topology, locality, smoothness hold), but the long CAD facets
-# beside the band's corner leave new facets under 10 degrees there.
+# Rounds ending at corners on CAD meshes (a rim edge into the pocket's next wall, the whole rim, a box corner's
+# three rounds, its two top edges): deviation, topology, locality and smoothness hold, but the CAD facets that
+# span the whole face beside the band's corner leave new facets under 10 degrees there.
 _CAD_CORNER_THIN = {("pocket_edge", "cad"), ("pocket_edge_draft", "cad"), ("pocket_rim_square", "cad"),
                     ("box_corner", "cad"), ("box_top_corner", "cad")}
 KNOWN_FAULTS = {
-    "deviation": set(_END_CAP_REFUSED),
-    "topology": set(_END_CAP_REFUSED),
-    "locality": set(_END_CAP_REFUSED),
-    "smoothness": set(_END_CAP_REFUSED),
-    # ... and where the round meets the top face at a concave end cap, the cap's cusp (the arc leaves the
+    "deviation": set(),
+    "topology": set(),
+    "locality": set(),
+    "smoothness": set(),
+    # Where the round meets the top face at a concave end cap, the cap's cusp (the arc leaves the
     # face's trace tangentially) makes one facet there under 10 degrees on the fine mesh.
     # The mitred rim's fine mesh: where the mitre meets the top face, the second round's trim line has a
     # point a hair (0.03 r) from the mitre's corner, and the facets between them are under 10 degrees.
