@@ -37,6 +37,8 @@ py::dict deck_arrays(const Deck& d) {
   out["shell_counts"] = column_of<int>(m, [&](size_t i) { return d.shells[i].count; });
   out["shell_file"] = column_of<int>(m, [&](size_t i) { return d.shells[i].file; });
   out["shell_line"] = column_of<int>(m, [&](size_t i) { return d.shells[i].line + 1; });
+  out["node_span"] = column_of<int>(n, [&](size_t i) { return d.nodes[i].lines; });     // lines per record
+  out["shell_span"] = column_of<int>(m, [&](size_t i) { return d.shells[i].lines; });
   py::array_t<long long> index({py::ssize_t(m), py::ssize_t(4)}), ids({py::ssize_t(m), py::ssize_t(4)});
   for (size_t i = 0; i < m; ++i)
     for (int k = 0; k < 4; ++k) index.mutable_at(i, k) = d.shells[i].node_index[k], ids.mutable_at(i, k) = d.shells[i].nodes[k];
@@ -50,6 +52,7 @@ py::dict deck_arrays(const Deck& d) {
     e["members"] = py::array_t<long long>(py::ssize_t(s.members.size()), s.members.data());
     e["named_members"] = s.named_members;
     e["generate"] = s.generate;
+    e["data_lines"] = py::make_tuple(s.data_begin + 1, s.data_end + 1);  // 1-based [first, end)
     sets.append(e);
   }
   for (const DeckFile& f : d.files) files.append(f.path);
