@@ -11,7 +11,8 @@ new nodes, new elements, sets with new members) and a summary for the report.
      edge become one quad when the quad is convex, its corners within 90 +- max_corner_skew degrees and
      the two halves within max_warp degrees of each other (best quads first).
   4. A new element takes the part of the removed element nearest to it (centroids); a set that held
-     removed elements (nodes) gets the new elements (nodes) whose nearest removed one it held.
+     removed elements (nodes) gets the new elements (nodes) whose nearest removed one it held, and the new
+     one nearest to each removed member.
 """
 import numpy as np
 
@@ -56,10 +57,10 @@ def edits_for(arrays, vertices, triangles, tri_shell, vertex_node, result, quad_
 
     removed_nodes = _removed_nodes(arrays, lost, element_nodes, keep_unused_nodes)
     removed_node_xyz = arrays["node_xyz"][_lookup(arrays["node_ids"], removed_nodes)]
-    node_replaces = (removed_nodes[_nearest(out_v[new_vertices], removed_node_xyz)]
-                     if len(new_vertices) and len(removed_nodes) else np.zeros(0, np.int64))
-    set_members = _set_updates(arrays, arrays["shell_ids"][removed_shells], arrays["shell_ids"][replaces], element_ids,
-                               removed_nodes, node_replaces, vertex_id[new_vertices])
+    set_members = _set_updates(arrays,
+                               {"elements": (arrays["shell_ids"][removed_shells], removed_centroids),
+                                "nodes": (removed_nodes, removed_node_xyz)},
+                               {"elements": (element_ids, centroids), "nodes": (vertex_id[new_vertices], out_v[new_vertices])})
     edits = dict(removed_nodes=removed_nodes, removed_shells=arrays["shell_ids"][removed_shells],
                  node_ids=vertex_id[new_vertices], node_xyz=out_v[new_vertices],
                  shell_ids=element_ids, shell_parts=parts, shell_nodes=element_nodes, set_members=set_members)
@@ -213,16 +214,26 @@ def _removed_nodes(arrays, lost, element_nodes, keep_unused):
     return np.setdiff1d(ids, element_nodes[element_nodes > 0])
 
 
-def _set_updates(arrays, removed_elements, replaced, new_elements, removed_nodes, node_replaces, new_nodes):
-    """[(set index, new member IDs)] for the sets that held a removed element or node."""
+def _set_updates(arrays, removed, new):
+    """[(set index, new member IDs)] for the sets that held a removed element or node.  removed/new:
+    {"elements"/"nodes": (IDs, points)}.  A set gets the new entities whose nearest removed one it held, and
+    for each removed member the new entity nearest to it (so each removed member has a replacement)."""
+    nearest = {}
+    for kind in ("elements", "nodes"):
+        (gone, gone_at), (made, made_at) = removed[kind], new[kind]
+        if len(gone) and len(made):
+            nearest[kind] = (gone[_nearest(made_at, gone_at)], made[_nearest(gone_at, made_at)])
     updates = []
     for index, s in enumerate(arrays["sets"]):
+        kind = "nodes" if s["of_nodes"] else "elements"
         members = np.asarray(s["members"], np.int64)
-        gone, by, new = ((removed_nodes, node_replaces, new_nodes) if s["of_nodes"]
-                         else (removed_elements, replaced, new_elements))
-        held = np.isin(members, gone)
+        held = np.isin(members, removed[kind][0])
         if not np.any(held):
             continue
-        added = new[np.isin(by, members[held])]
+        added = np.zeros(0, np.int64)
+        if kind in nearest:
+            by, closest = nearest[kind]
+            made = new[kind][0]
+            added = np.union1d(made[np.isin(by, members[held])], closest[np.isin(removed[kind][0], members[held])])
         updates.append((index, np.concatenate([members[~held], added])))
     return updates

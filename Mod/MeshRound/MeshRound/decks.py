@@ -28,17 +28,14 @@ import time
 import numpy as np
 
 from . import api
+from .deck_formats import DECK_EXTENSIONS, deck_family
 from .errors import RoundingError, require_core
 
 __all__ = ["DECK_EXTENSIONS", "is_deck_path", "read_deck", "deck_triangles", "round_deck", "DeckRoundingResult",
            "QuadOptions"]
 
-DECK_EXTENSIONS = {".k": "lsdyna", ".key": "lsdyna", ".dyn": "lsdyna", ".bdf": "nastran", ".nas": "nastran",
-                   ".dat": "nastran", ".inp": "abaqus"}
-
-
 def is_deck_path(path):
-    return os.path.splitext(str(path))[1].lower() in DECK_EXTENSIONS
+    return deck_family(path) is not None
 
 
 @dataclasses.dataclass
