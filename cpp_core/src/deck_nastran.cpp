@@ -2,6 +2,8 @@
 // (comma) fields, with continuation lines; INCLUDE '<file>'. Before BEGIN BULK (when the file has one)
 // only INCLUDE is read; after ENDDATA nothing. Every other card is kept as it is.
 #include <cstdio>
+#include <algorithm>
+#include <deque>
 
 #include "deck_text.h"
 
@@ -32,6 +34,19 @@ struct NasReader {
   const DeckFile& f() const { return r.deck.files[file]; }
   Deck& d() { return r.deck; }
 
+  std::deque<std::string> expanded;  // tab-expanded lines of the record being read (fields view them)
+
+  // A fixed-field line with its tabs expanded to the next 8-column field, as Nastran reads it.
+  std::string_view expand_tabs(std::string_view line) {
+    std::string out;
+    for (char c : line) {
+      if (c == '\t') out.append(8 - out.size() % 8, ' ');
+      else out += c;
+    }
+    expanded.push_back(std::move(out));
+    return expanded.back();
+  }
+
   // The data fields of a record (field 2 on, continuation markers left out), and its style.
   std::vector<std::string_view> data_fields(const Record& rec, std::string& name, FieldStyle& style) {
     std::vector<std::string_view> out;
@@ -45,12 +60,13 @@ struct NasReader {
         for (size_t j = 1; j < toks.size() && j <= per; ++j) out.push_back(toks[j]);
         continue;
       }
-      if (line.find('\t') != std::string_view::npos) refuse(f(), rec.lines[k], "tab characters in fixed-field cards are not supported");
-      const std::string_view head = trim(column(line, 0, 8));
+      std::string_view line_fixed = line;
+      if (line.find('\t') != std::string_view::npos) line_fixed = expand_tabs(line);
+      const std::string_view head = trim(column(line_fixed, 0, 8));
       const bool large = !head.empty() && head.back() == '*';
       if (k == 0) name = upper(head), style = large ? FieldStyle::Long : FieldStyle::Fixed;
       const size_t w = large ? 16 : 8, per = large ? 4 : 8;
-      for (size_t j = 0; j < per; ++j) out.push_back(trim(column(line, 8 + j * w, w)));
+      for (size_t j = 0; j < per; ++j) out.push_back(trim(column(line_fixed, 8 + j * w, w)));
     }
     if (!name.empty() && name.back() == '*') name.pop_back();
     return out;
@@ -71,6 +87,7 @@ struct NasReader {
 void NasReader::record(const Record& rec) {
   std::string name;
   FieldStyle style = FieldStyle::Fixed;
+  expanded.clear();
   const auto fs = data_fields(rec, name, style);
   const int line = rec.first;
   if (name == "GRID") {
@@ -126,9 +143,13 @@ void NasReader::run() {
     const std::string_view t = trim(text);
     if (starts_with_ci(t, "INCLUDE")) {
       flush();
-      const size_t a = t.find('\''), b = t.rfind('\'');
-      if (a == std::string_view::npos || b <= a) refuse(f(), i, "INCLUDE needs a quoted file name");
-      const int inc = r.include(file, i, std::string(t.substr(a + 1, b - a - 1)));
+      // The quoted name may continue on the next lines (leading and trailing blanks not part of it).
+      std::string quoted(t);
+      const int first = i;
+      while (std::count(quoted.begin(), quoted.end(), '\'') == 1 && i + 1 < n) quoted += std::string(trim(line_of(f(), ++i)));
+      const size_t a = quoted.find('\''), b = quoted.rfind('\'');
+      if (a == std::string::npos || b <= a) refuse(f(), first, "INCLUDE needs a quoted file name");
+      const int inc = r.include(file, first, quoted.substr(a + 1, b - a - 1));
       ++r.depth;
       NasReader sub{r, inc, bulk};
       sub.run();

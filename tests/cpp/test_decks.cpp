@@ -253,6 +253,12 @@ TEST(DeckNastran, EditsAndErrors) {
   EXPECT_NE(refusal("GRID    1               0.      0.      abc\n", DeckFormat::Nastran).find("dir/main:1: bad GRID coordinate 'abc'"), std::string::npos);
   EXPECT_NE(refusal("+C1     1\n", DeckFormat::Nastran).find("continuation line without a card"), std::string::npos);
   EXPECT_NE(refusal("INCLUDE 'grids.bdf'\n", DeckFormat::Nastran).find("cannot read the included file 'dir/grids.bdf'"), std::string::npos);
+  // Tabs move to the next 8-column field; a quoted INCLUDE name may continue on the next line.
+  const Deck tabs = parse("GRID\t7\t\t0.5\t1.\t-2.\n", DeckFormat::Nastran);
+  ASSERT_EQ(tabs.nodes.size(), 1u);
+  EXPECT_DOUBLE_EQ(tabs.nodes[0].xyz.x(), 0.5);
+  EXPECT_DOUBLE_EQ(tabs.nodes[0].xyz.z(), -2.0);
+  EXPECT_NE(refusal("INCLUDE 'sub/\n  g.bdf'\n", DeckFormat::Nastran).find("dir/main:1: cannot read the included file 'dir/sub/g.bdf'"), std::string::npos);
   const Deck inc = parse("BEGIN BULK\nINCLUDE 'g.bdf'\nCTRIA3  1       2       1       2       3\n", DeckFormat::Nastran,
                          {{"dir/g.bdf", "GRID,1,,0.,0.,0.\nGRID,2,,1.,0.,0.\nGRID,3,,0.,1.,0.\n"}});
   EXPECT_EQ(inc.nodes.size(), 3u);
