@@ -10,8 +10,6 @@ namespace meshround::decktext {
 
 namespace {
 
-constexpr long long kMaxGenerated = 50'000'000;  // members a GENERATE line may expand to (more: refused)
-
 int shell_nodes(const std::string& type) {
   static const std::map<std::string, int> known = {
       {"S3", 3},   {"S3R", 3},   {"S3RS", 3},  {"STRI3", 3},  {"M3D3", 3},  {"R3D3", 3},  {"SFM3D3", 3},
@@ -181,6 +179,7 @@ void AbqReader::set_line(std::string_view text, int line) {
     const long long step = ids.size() == 3 ? ids[2] : 1;
     if (ids[0] <= 0 || ids[1] < ids[0] || step <= 0 || (ids[1] - ids[0]) / step >= kMaxGenerated - (long long)s.members.size())
       refuse(f(), line, "bad GENERATE range " + std::to_string(ids[0]) + ", " + std::to_string(ids[1]) + ", " + std::to_string(step));
+    s.members.reserve(s.members.size() + size_t((ids[1] - ids[0]) / step + 1));
     for (long long i = ids[0]; i <= ids[1]; i += step) s.members.push_back(i);
   } else {
     s.members.insert(s.members.end(), ids.begin(), ids.end());

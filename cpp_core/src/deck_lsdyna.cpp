@@ -12,8 +12,6 @@ namespace {
 
 enum class Ctx { None, Node, Shell, Part, Set, Include, OtherElement };
 
-constexpr long long kMaxGenerated = 50'000'000;  // members a GENERATE range may expand to (more: refused)
-
 struct Widths {
   size_t id, real, general;  // *NODE id, *NODE coordinates, shell fields and 10-column cards
 };
@@ -226,6 +224,7 @@ void LsReader::set_line(std::string_view text, int line) {
     for (size_t k = 0; k < ids.size(); k += 2) {
       if (ids[k] <= 0 || ids[k + 1] < ids[k] || ids[k + 1] - ids[k] >= kMaxGenerated - (long long)s.members.size())
         refuse(f(), line, "bad GENERATE range " + std::to_string(ids[k]) + " to " + std::to_string(ids[k + 1]));
+      s.members.reserve(s.members.size() + size_t(ids[k + 1] - ids[k] + 1));
       for (long long i = ids[k]; i <= ids[k + 1]; ++i) s.members.push_back(i);
     }
   } else {

@@ -8,6 +8,10 @@
 
 namespace meshround::decktext {
 
+// Members one set's GENERATE ranges may expand to; a deck asking for more is refused (a typo in a range
+// would otherwise take the memory and time of a huge set).
+constexpr long long kMaxGenerated = 10'000'000;
+
 // Splits a file's text into lines (DeckFile::line_start, eol).
 DeckFile make_file(const std::string& path, std::string text);
 // Line i without its line end.

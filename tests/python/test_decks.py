@@ -237,6 +237,29 @@ def test_all_triangle_option_and_id_range(box, tmp_path):
     assert b"*ELEMENT, TYPE=S3R, ELSET=TOP" in open(out, "rb").read()  # S4R's triangle is S3R
 
 
+def test_shells_facing_either_way_are_rounded_and_kept_as_they_face(box, tmp_path):
+    """Solver decks' shells often face either way: every third quad here runs the other way round."""
+    xyz, quads, faces, near, far, edge = box
+    flipped = quads.copy()
+    flipped[::3] = flipped[::3, ::-1]
+    path = deck_files.write_deck(str(tmp_path), "lsdyna_fixed", xyz, flipped, faces, near, far, edge)
+    out = str(tmp_path / "out.k")
+    res = MeshRound.round_deck(path, out, [SEED], R)
+    before, after = MeshRound.read_deck(path), MeshRound.read_deck(out)
+    kept = np.isin(before["shell_ids"], after["shell_ids"])
+    rows = np.searchsorted(after["shell_ids"], before["shell_ids"][kept])
+    np.testing.assert_array_equal(after["shell_node_ids"][rows], before["shell_node_ids"][kept])
+    assert res.report["deck"]["elements_removed"] == len(before["shell_ids"]) - kept.sum() > 0
+    assert res.report["deck"]["check"]["open_edges_after"] == 0
+
+
+def test_a_changed_include_is_never_written_over_the_input(box, tmp_path):
+    path = deck_files.write_deck(str(tmp_path), "lsdyna_long", *box)  # nodes in box_nodes.k
+    with pytest.raises(MeshRound.RoundingError, match="would overwrite the input") as err:
+        MeshRound.round_deck(path, str(tmp_path / "out.k"), [SEED], R)
+    assert err.value.code == "invalid_input" and not os.path.exists(tmp_path / "out.k")
+
+
 def test_cli_rounds_a_deck_by_extension(box, tmp_path):
     from MeshRound import cli
     path = deck_files.write_deck(str(tmp_path), "nastran_small", *box)

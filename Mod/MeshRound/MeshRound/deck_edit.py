@@ -56,7 +56,7 @@ def edits_for(arrays, vertices, triangles, tri_shell, vertex_node, result, quad_
     parts = arrays["shell_parts"][replaces]
 
     removed_nodes = _removed_nodes(arrays, lost, element_nodes, keep_unused_nodes)
-    removed_node_xyz = arrays["node_xyz"][_lookup(arrays["node_ids"], removed_nodes)]
+    removed_node_xyz = arrays["node_xyz"][_lookup_rows(arrays["node_ids"][:, None], removed_nodes[:, None])]
     set_members = _set_updates(arrays,
                                {"elements": (arrays["shell_ids"][removed_shells], removed_centroids),
                                 "nodes": (removed_nodes, removed_node_xyz)},
@@ -80,25 +80,53 @@ def edits_for(arrays, vertices, triangles, tri_shell, vertex_node, result, quad_
     return edits, summary
 
 
-def _row_keys(rows):
-    """One hashable-sortable key per row of a float or int array (its bytes)."""
-    rows = np.ascontiguousarray(rows)
-    return rows.view(np.dtype((np.void, rows.dtype.itemsize * rows.shape[1]))).ravel()
+def _mix(words):
+    """splitmix64's finaliser on each 64-bit word (coordinates on a grid differ only in a few bits)."""
+    x = words.copy()
+    with np.errstate(over="ignore"):
+        x ^= x >> np.uint64(30)
+        x *= np.uint64(0xBF58476D1CE4E5B9)
+        x ^= x >> np.uint64(27)
+        x *= np.uint64(0x94D049BB133111EB)
+        x ^= x >> np.uint64(31)
+    return x
 
 
-def _lookup(table_keys, query_keys):
-    """For each query key, its index in table_keys, or -1."""
-    order = np.argsort(table_keys, kind="stable")
-    sorted_keys = table_keys[order]
-    at = np.searchsorted(sorted_keys, query_keys)
-    at = np.minimum(at, len(sorted_keys) - 1)
-    found = sorted_keys[at] == query_keys if len(sorted_keys) else np.zeros(len(query_keys), bool)
-    return np.where(found, order[at], -1)
+def _row_hash(rows):
+    words = rows.view(np.uint64).reshape(len(rows), -1)
+    key = np.zeros(len(rows), np.uint64)
+    with np.errstate(over="ignore"):
+        for j in range(words.shape[1]):
+            key = _mix(key * np.uint64(31) + words[:, j])
+    return key
+
+
+def _lookup_rows(table, query):
+    """For each row of query, the index of an equal row (bit for bit) of table, or -1: rows hashed to one
+    64-bit key each, sorted, and every candidate checked in full (a key shared by unequal rows is walked)."""
+    table, query = np.ascontiguousarray(table), np.ascontiguousarray(query)
+    if len(table) == 0 or len(query) == 0:
+        return np.full(len(query), -1)
+    tk = _row_hash(table)
+    order = np.argsort(tk)
+    sorted_keys = tk[order]
+    qk = _row_hash(query)
+    at = np.minimum(np.searchsorted(sorted_keys, qk), len(table) - 1)
+    found = np.all(table[order[at]] == query, axis=1)
+    out = np.where(found, order[at], -1)
+    for q in np.flatnonzero(~found & (sorted_keys[at] == qk)):  # same key, other row: look further
+        j = at[q] + 1
+        while j < len(table) and sorted_keys[j] == qk[q]:
+            if np.array_equal(table[order[j]], query[q]):
+                out[q] = order[j]
+                break
+            j += 1
+    return out
 
 
 def _match_rows(vertices, out_v):
     """For each output vertex, the input vertex with the same coordinates (bit for bit), or -1."""
-    return _lookup(_row_keys(np.asarray(vertices, np.float64) + 0.0), _row_keys(np.asarray(out_v, np.float64) + 0.0))
+    return _lookup_rows(np.asarray(vertices, np.float64) + 0.0, np.asarray(out_v, np.float64) + 0.0)
 
 
 def _canonical(tris):
@@ -114,7 +142,7 @@ def _kept_triangles(triangles, match, out_t):
     full = np.all(mapped >= 0, axis=1)
     out_is_input = np.full(len(out_t), -1)
     if np.any(full):
-        out_is_input[full] = _lookup(_row_keys(_canonical(np.asarray(triangles))), _row_keys(_canonical(mapped[full])))
+        out_is_input[full] = _lookup_rows(_canonical(np.asarray(triangles)), _canonical(mapped[full]))
     in_kept = np.zeros(len(triangles), bool)
     in_kept[out_is_input[out_is_input >= 0]] = True
     return in_kept, out_is_input

@@ -91,7 +91,59 @@ def deck_triangles(arrays, part=None):
     tri_nodes = np.concatenate([first, second])
     tri_shell = np.concatenate([shells, shells[quad]])
     vertex_node, triangles = np.unique(tri_nodes, return_inverse=True)
-    return xyz[vertex_node], triangles.reshape(-1, 3), tri_shell, vertex_node
+    triangles = orient(triangles.reshape(-1, 3))
+    return xyz[vertex_node], triangles, tri_shell, vertex_node
+
+
+def orient(triangles):
+    """The triangles turned consistently across every edge two of them share (solver decks' shells often
+    face either way; the engine needs one turn).  In each connected piece the turn most of its triangles
+    have is kept.  A piece that cannot be turned consistently (a Moebius band) is left as it is."""
+    t = np.asarray(triangles, np.int64)
+    tail, head = t.ravel(), np.roll(t, -1, axis=1).ravel()
+    key = np.minimum(tail, head) * (int(t.max()) + 1) + np.maximum(tail, head)
+    order = np.argsort(key, kind="stable")
+    k = key[order]
+    pair = np.flatnonzero((k[1:] == k[:-1]) & ((np.r_[k[2:], -1] != k[1:])) & (np.r_[-1, k[:-2]] != k[1:]))
+    a, b = order[pair], order[pair + 1]
+    same = tail[a] == tail[b]  # both run the edge the same way: one of them must turn
+    if not same.any():
+        return t
+    ta, tb = a // 3, b // 3
+    # Breadth-first over shared edges; flip[t] is whether triangle t turns.
+    n = len(t)
+    nbr = np.concatenate([tb, ta])
+    rel = np.concatenate([same, same])
+    src = np.concatenate([ta, tb])
+    srt = np.argsort(src, kind="stable")
+    nbr, rel = nbr[srt], rel[srt]
+    start = np.searchsorted(src[srt], np.arange(n + 1))
+    flip = np.zeros(n, bool)
+    seen = np.zeros(n, bool)
+    for root in range(n):
+        if seen[root]:
+            continue
+        seen[root] = True
+        piece, queue, consistent = [root], [root], True
+        while queue:
+            x = queue.pop()
+            for j in range(start[x], start[x + 1]):
+                y, want = nbr[j], flip[x] ^ rel[j]
+                if not seen[y]:
+                    seen[y] = True
+                    flip[y] = want
+                    piece.append(y)
+                    queue.append(y)
+                elif flip[y] != want:
+                    consistent = False
+        piece = np.array(piece)
+        if not consistent:
+            flip[piece] = False
+        elif flip[piece].sum() * 2 > len(piece):
+            flip[piece] = ~flip[piece]
+    t = t.copy()
+    t[flip] = t[flip][:, ::-1]
+    return t
 
 
 def round_deck(in_path, out_path, seeds, radius, part=None, tolerance=None, feature_angle=30.0, reach=3.0,
