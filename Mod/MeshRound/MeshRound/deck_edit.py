@@ -235,10 +235,12 @@ def _removed_nodes(arrays, lost, element_nodes, keep_unused):
     if keep_unused or not np.any(lost):
         return np.zeros(0, np.int64)
     nodes = arrays["shell_nodes"]
-    before = np.unique(nodes[lost][nodes[lost] >= 0])
-    still = np.unique(nodes[~lost][nodes[~lost] >= 0])
-    gone = np.setdiff1d(before, still)
-    ids = arrays["node_ids"][gone]
+    before = np.zeros(len(arrays["node_ids"]), bool)
+    still = np.zeros(len(arrays["node_ids"]), bool)
+    before[nodes[lost][nodes[lost] >= 0]] = True
+    kept = nodes[~lost]
+    still[kept[kept >= 0]] = True
+    ids = arrays["node_ids"][before & ~still]
     return np.setdiff1d(ids, element_nodes[element_nodes > 0])
 
 

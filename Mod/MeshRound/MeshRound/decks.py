@@ -90,8 +90,11 @@ def deck_triangles(arrays, part=None):
     second = np.where(on13[:, None], nodes[:, [1, 2, 3]], nodes[:, [0, 2, 3]])[quad]
     tri_nodes = np.concatenate([first, second])
     tri_shell = np.concatenate([shells, shells[quad]])
-    vertex_node, triangles = np.unique(tri_nodes, return_inverse=True)
-    triangles = orient(triangles.reshape(-1, 3))
+    used = np.zeros(len(xyz), bool)
+    used[tri_nodes.ravel()] = True
+    vertex_node = np.flatnonzero(used)
+    renumber = np.cumsum(used) - 1  # node index -> vertex index (for the nodes the shells use)
+    triangles = orient(renumber[tri_nodes])
     return xyz[vertex_node], triangles, tri_shell, vertex_node
 
 
