@@ -19,32 +19,24 @@ def box_quads(size, h):
     """(xyz (n, 3), quads (m, 4) 0-based, face (m,) index 0..5 with 5 = the top z = size[2])."""
     L = np.asarray(size, float)
     n = np.maximum(1, np.round(L / h).astype(int))
-    index, points, quads, faces = {}, [], [], []
-
-    def node(p):
-        key = tuple(np.round(p, 9))
-        if key not in index:
-            index[key] = len(points)
-            points.append(p)
-        return index[key]
-
+    points, quads, faces = [], [], []
     for axis in range(3):
         for side in (0, 1):
             u, v = [(1, 2), (2, 0), (0, 1)][axis]
             if side == 0:
                 u, v = v, u  # u x v outward
-            for i in range(n[u]):
-                for j in range(n[v]):
-                    corners = []
-                    for di, dj in ((0, 0), (1, 0), (1, 1), (0, 1)):
-                        p = np.zeros(3)
-                        p[axis] = side * L[axis]
-                        p[u] = (i + di) * L[u] / n[u]
-                        p[v] = (j + dj) * L[v] / n[v]
-                        corners.append(node(p))
-                    quads.append(corners)
-                    faces.append(2 * axis + side)
-    return np.array(points), np.array(quads), np.array(faces)
+            i, j = np.meshgrid(np.arange(n[u] + 1), np.arange(n[v] + 1), indexing="ij")
+            p = np.zeros(i.shape + (3,))
+            p[..., axis] = side * L[axis]
+            p[..., u] = i * L[u] / n[u]
+            p[..., v] = j * L[v] / n[v]
+            ids = sum(len(x) for x in points) + np.arange(i.size).reshape(i.shape)
+            quads.append(np.stack([ids[:-1, :-1], ids[1:, :-1], ids[1:, 1:], ids[:-1, 1:]], axis=-1).reshape(-1, 4))
+            faces.append(np.full(len(quads[-1]), 2 * axis + side))
+            points.append(p.reshape(-1, 3))
+    # The faces' own points merged where they meet (the box's edges and corners).
+    xyz, merged = np.unique(np.round(np.concatenate(points), 9), axis=0, return_inverse=True)
+    return xyz, merged.ravel()[np.concatenate(quads)], np.concatenate(faces)
 
 
 def family(style):
