@@ -221,8 +221,15 @@ def _shell_centroids(arrays, shells):
 
 
 def _nearest(points, targets):
-    """For each point, the index of the nearest target (brute force in blocks)."""
+    """For each point, the index of the nearest target: scipy's k-d tree when scipy is there (Debian's
+    python3-scipy), else brute force in blocks (fine for bands of a few thousand elements)."""
     points = np.asarray(points, np.float64).reshape(-1, 3)
+    try:
+        from scipy.spatial import cKDTree
+    except ImportError:
+        cKDTree = None
+    if cKDTree is not None and len(targets):
+        return cKDTree(targets).query(points)[1].astype(np.int64)
     out = np.zeros(len(points), np.int64)
     t2 = np.sum(targets * targets, axis=1)
     for a in range(0, len(points), _CHUNK):
