@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Builds the libFuzzer targets (clang-14, ASan + UBSan) into build-fuzz/ and runs each for SECONDS
-# (default 60): fuzz_round (the engine on generated meshes) and fuzz_arrays (raw arrays at the
-# boundary). Prints executions, corpus size, coverage (cov / ft) and findings of each; exits non-zero
+# (default 60): fuzz_round (the engine on generated meshes), fuzz_arrays (raw arrays at the
+# boundary) and fuzz_decks (the solver-deck readers and writer). Prints executions, corpus size, coverage (cov / ft) and findings of each; exits non-zero
 # when a target found a crash, a sanitizer report, an invariant break or a timeout (> 10 s per input).
 #   tools/fuzz.sh [SECONDS] [TARGET...]     corpora and findings: fuzz-out/<target>/
 # A finding is replayed with:  build-fuzz/tests/fuzz/<target> fuzz-out/<target>/artifacts/<file>
@@ -11,7 +11,7 @@ ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 SECONDS_EACH="${1:-60}"
 shift || true
 TARGETS=("$@")
-((${#TARGETS[@]})) || TARGETS=(fuzz_round fuzz_arrays)
+((${#TARGETS[@]})) || TARGETS=(fuzz_round fuzz_arrays fuzz_decks)
 BUILD="$ROOT/build-fuzz"
 JOBS="${MESHROUND_FUZZ_BUILD_JOBS:-2}"
 
@@ -27,6 +27,9 @@ status=0
 for t in "${TARGETS[@]}"; do
   out="$ROOT/fuzz-out/$t"
   mkdir -p "$out/corpus" "$out/artifacts"
+  if [ "$t" = fuzz_decks ]; then  # decks in the three formats (tests/fuzz/deck_seeds), and past findings
+    cp -n "$ROOT"/tests/fuzz/deck_seeds/* "$ROOT"/tests/fuzz/regressions/decks/*/* "$out/corpus/" 2>/dev/null || true
+  fi
   [ -n "$(ls -A "$out/corpus")" ] || python3 "$ROOT/tests/fuzz/make_corpus.py" "$out/corpus" 48
   # Past findings (fixed or not) stay in the corpus: they lead back to the places that broke.
   [ -d "$ROOT/tests/fuzz/regressions" ] && [ "$t" = fuzz_round ] && cp -n "$ROOT"/tests/fuzz/regressions/*/* "$out/corpus/" 2>/dev/null || true

@@ -167,6 +167,9 @@ py::list trace_chains_py(const py::array& vertices, const py::array& triangles, 
 
 }  // namespace
 
+// Solver decks (deck_bindings.cpp).
+void bind_decks(py::module_& m);
+
 // RoundingError for Python: a ValueError with the message and `.code` (error_code_name), raised from C++
 // and from the workbench's own checks alike.
 const char* kErrorClass = R"(
@@ -216,4 +219,5 @@ PYBIND11_MODULE(_meshround_core, m) {
         py::arg("radius_law") = py::none(), "Raise RoundingError (invalid_input) for an option out of range, as round_edges would.");
   m.def("trace_chains", &trace_chains_py, py::arg("vertices"), py::arg("triangles"), py::arg("seeds"),
         py::arg("feature_angle") = 30.0, py::arg("search_radius") = 0.0, "The sharp-edge chains the seeds select: [{'points': (c, 3), 'closed': bool}].");
+  bind_decks(m);
 }

@@ -5,6 +5,8 @@
     obj = MeshRound.make_rounding(base_feature, seeds, radius)    # parametric Mesh feature "Rounding"
     wires = MeshRound.trace_chains(mesh, seeds)                   # the chains seeds select
     MeshRound.quality_note(res.report)                            # why new facets are under 10 deg, if any
+    deck = MeshRound.read_deck("die.k")                           # solver deck (LS-DYNA/Nastran/Abaqus) as arrays
+    res = MeshRound.round_deck("die.k", "die_r5.k", seeds, 5)     # round a deck, write it back (decks.py)
     token = MeshRound.CancelToken()                               # round_edges(..., cancel=token); from
     token.cancel()                                                # another thread: stops the run
 
@@ -26,6 +28,8 @@ _EXPORTS = {
     "RoundingError": "errors",
     "CancelToken": "errors",
     "make_rounding": "objects.rounding",
+    "read_deck": "decks",
+    "round_deck": "decks",
 }
 __all__ = list(_EXPORTS)
 

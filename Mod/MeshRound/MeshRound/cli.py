@@ -1,7 +1,9 @@
 """The `meshround` command line: round sharp edges of a mesh file, headless.
 
     meshround round IN OUT --seed X,Y,Z [--seed ...] (--radius R | --radius-at X,Y,Z:R ...)
-                    [--tolerance T] [--feature-angle A] [--reach K] [--report FILE]
+                    [--tolerance T] [--feature-angle A] [--reach K] [--report FILE] [--part PID]
+    (IN and OUT both solver decks -- .k .key .dyn / .bdf .nas .dat / .inp, one family -- round the deck
+    and write it back with its IDs, parts, sets and other cards kept: MeshRound.decks)
     meshround demo [--out DIR]
 
 Run as `/usr/bin/python3 -m MeshRound.cli ...` with Mod/MeshRound on sys.path (the `meshround` wrapper
@@ -16,6 +18,11 @@ import math
 import os
 import sys
 import tempfile
+
+try:
+    from .deck_formats import deck_family
+except ImportError:  # run as a script: python3 -m MeshRound.cli puts the package on the path
+    from MeshRound.deck_formats import deck_family
 
 FREECAD_LIB = "/usr/lib/freecad-python3/lib"
 MOD_ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))  # .../Mod/MeshRound
@@ -92,6 +99,9 @@ def build_parser():
     rnd.add_argument("--reach", metavar="K", type=_finite, default=3.0,
                      help="re-mesh facets within K x radius of a chain (default 3)")
     rnd.add_argument("--report", metavar="FILE", help="write the rounding report as JSON")
+    rnd.add_argument("--part", metavar="PID", type=int, default=None,
+                     help="solver decks: round only this part's shells (LS-DYNA/Nastran PID; Abaqus: the "
+                          "ELSET's number in order of appearance); other parts are kept as they are")
 
     demo = commands.add_parser(
         "demo", help="round the S-rail die's shoulders (constant and variable radius) into DIR",
@@ -103,6 +113,14 @@ def build_parser():
 
 
 def check_extensions(parser, args):
+    decks_in, decks_out = deck_family(args.input), deck_family(args.output)
+    if decks_in and decks_out:
+        if decks_in != decks_out:
+            parser.error(f"'{args.input}' is a {decks_in} deck and '{args.output}' a {decks_out} deck: "
+                         "a deck is written back in its own format")
+        return
+    if args.part is not None:
+        parser.error("--part needs a solver deck as IN and OUT (.k .key .dyn, .bdf .nas .dat, .inp)")
     for path, allowed, role in ((args.input, READ_EXTENSIONS, "read"),
                                 (args.output, WRITE_EXTENSIONS, "write")):
         ext = os.path.splitext(path)[1].lstrip(".").lower()
@@ -131,6 +149,8 @@ def check_options(parser, args):
 
 # ------------------------------------------------------------------------------ the commands
 def run_round(args):
+    if deck_family(args.input) and deck_family(args.output):
+        return run_round_deck(args)
     Mesh, MeshRound = _import_freecad()
     mesh = _read_mesh(Mesh, args.input)
     radius = args.radius if args.radius is not None else args.radius_at
@@ -152,6 +172,27 @@ def run_round(args):
     note = MeshRound.quality_note(r)
     if note:
         print(f"meshround: {note}", file=sys.stderr)
+
+
+def run_round_deck(args):
+    """IN and OUT solver decks: MeshRound.round_deck (it writes OUT itself, all or nothing)."""
+    _, MeshRound = _import_freecad()
+    radius = args.radius if args.radius is not None else args.radius_at
+    try:
+        res = MeshRound.round_deck(args.input, args.output, args.seed, radius, part=args.part,
+                                   tolerance=args.tolerance, feature_angle=args.feature_angle, reach=args.reach)
+    except MeshRound.RoundingError as exc:
+        raise Failure(f"rounding failed [{getattr(exc, 'code', 'invalid_input')}]: {exc}") from exc
+    except OSError as exc:
+        raise Failure(f"cannot write '{args.output}': {exc}") from exc
+    if args.report:
+        _write_all_or_nothing([(args.report, lambda path: _dump_json(dict(res.report, input=args.input,
+                                                                             output=args.output), path))])
+    d = res.report["deck"]
+    print(f"meshround: {res.report.get('chains')} chain(s) rounded; {d['elements_removed']} of "
+          f"{d['elements_in']} elements replaced by {d['new_quads']} quads and {d['new_triangles']} triangles, "
+          f"{d['nodes_new']} new nodes, {len(d['sets_updated'])} set(s) updated, "
+          f"{res.report.get('seconds', 0.0):.2f} s -> {', '.join(res.paths)}")
 
 
 def demo_script():

@@ -1,0 +1,263 @@
+"""Solver decks (LS-DYNA .k/.key/.dyn, Nastran .bdf/.nas/.dat, Abaqus .inp): read, round, write back.
+
+    import MeshRound
+    deck = MeshRound.read_deck("die.k")                 # nodes, shells, parts, sets (numpy arrays)
+    res = MeshRound.round_deck("die.k", "die_r5.k", seeds=[(x, y, z)], radius=5, part=None)
+    res.report                                           # engine report + what happened to the deck
+
+The reading and writing are the engine's (cpp_core deck.h): every line that does not describe a changed
+node, element or set is written back byte for byte.  Here the deck's shells are given to the engine as
+triangles (a quad as two, split on its shorter diagonal, each triangle remembering its element), and the
+rounded mesh is turned back into elements:
+  - an element whose triangles all survive is kept as it was (its line untouched);
+  - the rest is removed; what survives of a cut quad and the new facets are paired into quads where two
+    triangles share an edge and form a good convex quad (the round's rows x columns), else triangles;
+  - new nodes and elements get IDs above the deck's largest (or from node_id_start / element_id_start);
+  - a new element takes the part of the nearest removed element; sets that held removed elements/nodes
+    hold the new elements/nodes that replace them (nearest removed one in the set);
+  - nodes no element uses any more are removed (keep_unused_nodes=True keeps them).
+The written deck is read again and checked (IDs unique, no new open or non-manifold edge) before it
+replaces out_path; on any failure nothing is written.
+"""
+import dataclasses
+import os
+import shutil
+import tempfile
+import time
+
+import numpy as np
+
+from . import api
+from .deck_formats import DECK_EXTENSIONS, deck_family
+from .errors import RoundingError, require_core
+
+__all__ = ["DECK_EXTENSIONS", "is_deck_path", "read_deck", "deck_triangles", "round_deck", "DeckRoundingResult",
+           "QuadOptions"]
+
+def is_deck_path(path):
+    return deck_family(path) is not None
+
+
+@dataclasses.dataclass
+class QuadOptions:
+    """When two triangles to be written share an edge and make a quad good enough to write as one."""
+    quads: bool = True             # False: every new element a triangle
+    max_corner_skew: float = 60.0  # degrees: every quad corner within 90 +- this (convex, not a sliver)
+    max_warp: float = 15.0         # degrees between the two triangles' normals
+
+
+@dataclasses.dataclass
+class DeckRoundingResult:
+    paths: list          # the files written (out_path first, then changed/copied includes)
+    report: dict         # the engine's report plus "deck": what happened to nodes, elements and sets
+    result: object       # the engine's api.RoundingResult (triangles; .surfaces are the exact rounds)
+
+
+def read_deck(path):
+    """The deck at `path` (format by extension, includes followed) as a dict of arrays (CONTRACT.md):
+    node_ids, node_xyz, shell_ids, shell_parts, shell_counts, shell_nodes (indices), shell_node_ids,
+    parts [(id, name)], sets [{of_nodes, name, id, members, ...}], files, max_node_id, max_element_id;
+    plus "deck", the engine's Deck (its .texts() are the files' bytes).  Raises RoundingError
+    (invalid_input) naming file:line and the reason for a malformed line."""
+    _check_extension(path)
+    if not os.path.isfile(path):
+        raise RoundingError(f"cannot read '{path}': no such file", code="invalid_input")
+    deck = require_core().read_deck(os.fspath(path))
+    arrays = deck.arrays()
+    arrays["deck"] = deck
+    return arrays
+
+
+def deck_triangles(arrays, part=None):
+    """(vertices (k, 3), triangles (t, 3), tri_shell (t,), vertex_node (k,)): the shells (of one part) as
+    triangles over the nodes they use; a quad is split on its shorter diagonal."""
+    shells = np.arange(len(arrays["shell_ids"]))
+    if part is not None:
+        shells = shells[arrays["shell_parts"] == part]
+        if len(shells) == 0:
+            known = sorted({int(p) for p in arrays["shell_parts"]})
+            raise RoundingError(f"part {part} has no shell elements (parts with shells: {known[:20]})",
+                                code="invalid_input")
+    if len(shells) == 0:
+        raise RoundingError("the deck has no 3- or 4-node shell elements", code="invalid_input")
+    nodes = arrays["shell_nodes"][shells]
+    xyz = arrays["node_xyz"]
+    quad = arrays["shell_counts"][shells] == 4
+    d02 = np.linalg.norm(xyz[nodes[:, 0]] - xyz[nodes[:, 2]], axis=1)
+    d13 = np.linalg.norm(xyz[np.where(quad, nodes[:, 1], nodes[:, 0])] - xyz[np.where(quad, nodes[:, 3], nodes[:, 0])], axis=1)
+    on13 = quad & (d13 < d02)
+    first = np.where(on13[:, None], nodes[:, [0, 1, 3]], nodes[:, [0, 1, 2]])
+    second = np.where(on13[:, None], nodes[:, [1, 2, 3]], nodes[:, [0, 2, 3]])[quad]
+    tri_nodes = np.concatenate([first, second])
+    tri_shell = np.concatenate([shells, shells[quad]])
+    used = np.zeros(len(xyz), bool)
+    used[tri_nodes.ravel()] = True
+    vertex_node = np.flatnonzero(used)
+    renumber = np.cumsum(used) - 1  # node index -> vertex index (for the nodes the shells use)
+    triangles = orient(renumber[tri_nodes])
+    return xyz[vertex_node], triangles, tri_shell, vertex_node
+
+
+def orient(triangles):
+    """The triangles turned consistently across every edge two of them share (solver decks' shells often
+    face either way; the engine needs one turn).  In each connected piece the turn most of its triangles
+    have is kept.  A piece that cannot be turned consistently (a Moebius band) is left as it is."""
+    t = np.asarray(triangles, np.int64)
+    tail, head = t.ravel(), np.roll(t, -1, axis=1).ravel()
+    key = np.minimum(tail, head) * (int(t.max()) + 1) + np.maximum(tail, head)
+    order = np.argsort(key, kind="stable")
+    k = key[order]
+    pair = np.flatnonzero((k[1:] == k[:-1]) & ((np.r_[k[2:], -1] != k[1:])) & (np.r_[-1, k[:-2]] != k[1:]))
+    a, b = order[pair], order[pair + 1]
+    same = tail[a] == tail[b]  # both run the edge the same way: one of them must turn
+    if not same.any():
+        return t
+    ta, tb = a // 3, b // 3
+    # Breadth-first over shared edges; flip[t] is whether triangle t turns.
+    n = len(t)
+    nbr = np.concatenate([tb, ta])
+    rel = np.concatenate([same, same])
+    src = np.concatenate([ta, tb])
+    srt = np.argsort(src, kind="stable")
+    nbr, rel = nbr[srt], rel[srt]
+    start = np.searchsorted(src[srt], np.arange(n + 1))
+    flip = np.zeros(n, bool)
+    seen = np.zeros(n, bool)
+    for root in range(n):
+        if seen[root]:
+            continue
+        seen[root] = True
+        piece, queue, consistent = [root], [root], True
+        while queue:
+            x = queue.pop()
+            for j in range(start[x], start[x + 1]):
+                y, want = nbr[j], flip[x] ^ rel[j]
+                if not seen[y]:
+                    seen[y] = True
+                    flip[y] = want
+                    piece.append(y)
+                    queue.append(y)
+                elif flip[y] != want:
+                    consistent = False
+        piece = np.array(piece)
+        if not consistent:
+            flip[piece] = False
+        elif flip[piece].sum() * 2 > len(piece):
+            flip[piece] = ~flip[piece]
+    t = t.copy()
+    t[flip] = t[flip][:, ::-1]
+    return t
+
+
+def round_deck(in_path, out_path, seeds, radius, part=None, tolerance=None, feature_angle=30.0, reach=3.0,
+               quad_options=None, node_id_start=None, element_id_start=None, keep_unused_nodes=False,
+               cancel=None):
+    """Round the sharp-edge chains nearest to `seeds` in the deck at in_path and write the deck to out_path
+    (same format family, by extension).  part: a part ID (LS-DYNA/Nastran PID, Abaqus: the index of the
+    ELSET in read_deck()["parts"]) to round alone; the other parts are kept as they are.  Other arguments as
+    round_edges.  Returns DeckRoundingResult; raises RoundingError (nothing written)."""
+    from . import deck_edit  # the mesh -> elements step (kept apart: one file per pass)
+    stamps = [_stamp()]
+    _check_extension(out_path)
+    if DECK_EXTENSIONS[_ext(in_path)] != DECK_EXTENSIONS[_ext(out_path)]:
+        raise RoundingError(f"'{out_path}' is not the same deck format as '{in_path}' (no conversion between formats)",
+                            code="invalid_input")
+    arrays = read_deck(in_path)
+    stamps.append(_stamp())
+    vertices, triangles, tri_shell, vertex_node = deck_triangles(arrays, part)
+    stamps.append(_stamp())
+    result = api.round_arrays(vertices, triangles, seeds, radius, tolerance=tolerance, feature_angle=feature_angle,
+                              reach=reach, cancel=cancel)
+    stamps.append(_stamp())
+    edits, summary = deck_edit.edits_for(arrays, vertices, triangles, tri_shell, vertex_node, result,
+                                         quad_options or QuadOptions(), node_id_start, element_id_start,
+                                         keep_unused_nodes)
+    stamps.append(_stamp())
+    texts = arrays["deck"].write(**edits)
+    stamps.append(_stamp())
+    paths = _write_checked(arrays, texts, in_path, out_path, part, triangles, summary)
+    stamps.append(_stamp())
+    report = dict(result.report)
+    report["deck"] = summary
+    steps = ("read", "split", "round", "elements", "write", "save_and_check")
+    # Wall and processor seconds of each step (on a shared machine the second is the steadier figure).
+    report["seconds_deck"] = {k: b[0] - a[0] for k, a, b in zip(steps, stamps, stamps[1:])}
+    report["cpu_seconds_deck"] = {k: b[1] - a[1] for k, a, b in zip(steps, stamps, stamps[1:])}
+    report["seconds"] = stamps[-1][0] - stamps[0][0]
+    return DeckRoundingResult(paths=paths, report=report, result=result)
+
+
+def _stamp():
+    return time.perf_counter(), time.process_time()
+
+
+def _ext(path):
+    return os.path.splitext(str(path))[1].lower()
+
+
+def _check_extension(path):
+    if _ext(path) not in DECK_EXTENSIONS:
+        raise RoundingError(f"'{path}' is not a solver deck by its extension (.k .key .dyn: LS-DYNA, "
+                            ".bdf .nas .dat: Nastran, .inp: Abaqus)", code="invalid_input")
+
+
+def _write_checked(arrays, texts, in_path, out_path, part, in_triangles, summary):
+    """Writes the files into a temporary folder beside out_path, reads them back and checks them, then moves
+    them into place.  Included files go beside out_path under their relative names; an unchanged one in the
+    same place as the input's is shared, a changed one there is refused (it would overwrite the input)."""
+    in_dir = os.path.dirname(os.path.abspath(in_path))
+    out_dir = os.path.dirname(os.path.abspath(out_path))
+    old_texts = arrays["deck"].texts()
+    rels, targets = [os.path.basename(out_path)], [os.path.abspath(out_path)]
+    for path, old, new in zip(arrays["files"][1:], old_texts[1:], texts[1:]):
+        rel = os.path.relpath(os.path.abspath(path), in_dir)
+        if rel.startswith(".."):
+            raise RoundingError(f"the included file '{path}' is outside the deck's folder: cannot place its copy",
+                                code="invalid_input")
+        target = os.path.join(out_dir, rel)
+        if target == os.path.abspath(path):
+            if old != new:
+                raise RoundingError(f"the rounding changes the included file '{path}'; writing it beside "
+                                    f"'{out_path}' would overwrite the input: choose another output folder",
+                                    code="invalid_input")
+            target = None  # shared, unchanged
+        rels.append(rel)
+        targets.append(target)
+    stage = tempfile.mkdtemp(prefix=".meshround-deck-", dir=out_dir)
+    try:
+        for rel, text in zip(rels, texts):
+            path = os.path.join(stage, rel)
+            os.makedirs(os.path.dirname(path), exist_ok=True)
+            with open(path, "wb") as stream:
+                stream.write(text)
+        _check_written(os.path.join(stage, rels[0]), part, in_triangles, summary)
+        written = []
+        for rel, target in zip(rels, targets):
+            if target is not None:
+                os.makedirs(os.path.dirname(target), exist_ok=True)
+                os.replace(os.path.join(stage, rel), target)
+                written.append(target)
+        return written
+    finally:
+        shutil.rmtree(stage, ignore_errors=True)
+
+
+def _check_written(path, part, in_triangles, summary):
+    """The written deck reads back (IDs unique, nodes defined) and its shells have no open or non-manifold
+    edge the input did not have."""
+    back = require_core().read_deck(path).arrays()
+    _, tris, _, _ = deck_triangles(back, part)
+    before, after = _edge_defects(in_triangles), _edge_defects(tris)
+    summary["check"] = {"open_edges_before": before[0], "open_edges_after": after[0],
+                        "nonmanifold_edges_before": before[1], "nonmanifold_edges_after": after[1]}
+    if after[0] > before[0] or after[1] > before[1]:
+        raise RoundingError(f"the written deck's shells have {after[0]} open and {after[1]} non-manifold edges "
+                            f"(the input: {before[0]} and {before[1]}); nothing was written", code="result_invalid")
+
+
+def _edge_defects(triangles):
+    """(open edges, non-manifold edges) of a triangle mesh; a quad's diagonal is an interior edge."""
+    edges = np.sort(np.concatenate([triangles[:, [0, 1]], triangles[:, [1, 2]], triangles[:, [2, 0]]]), axis=1)
+    keys = edges[:, 0].astype(np.int64) * (int(triangles.max()) + 1) + edges[:, 1]
+    _, counts = np.unique(keys, return_counts=True)
+    return int(np.sum(counts == 1)), int(np.sum(counts > 2))

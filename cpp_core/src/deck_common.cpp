@@ -1,0 +1,252 @@
+// What the three deck readers share: lines and fields, numbers, includes, and the deck-wide checks
+// (unique IDs, every shell's nodes defined).
+#include <algorithm>
+#include <cctype>
+#include <charconv>
+#include <cstring>
+#include <fstream>
+#include <sstream>
+#include <unordered_map>
+
+#include "deck_text.h"
+
+namespace meshround {
+namespace decktext {
+
+namespace {
+constexpr int kMaxIncludeDepth = 16;  // deeper nesting is taken for a cycle and refused
+}
+
+DeckFile make_file(const std::string& path, std::string text) {
+  DeckFile f;
+  f.path = path;
+  f.text = std::move(text);
+  f.line_start.reserve(f.text.size() / 40 + 2);
+  f.line_start.push_back(0);
+  const char* base = f.text.data();
+  const char* end = base + f.text.size();
+  for (const char* p = base; p < end;) {
+    const char* nl = static_cast<const char*>(std::memchr(p, '\n', size_t(end - p)));
+    if (!nl) break;
+    p = nl + 1;
+    f.line_start.push_back(size_t(p - base));
+  }
+  if (f.line_start.back() != f.text.size()) f.line_start.push_back(f.text.size());  // last line without an end
+  if (f.line_start.size() > 1 && f.line_start[1] >= 2 && f.text[f.line_start[1] - 2] == '\r') f.eol = "\r\n";
+  return f;
+}
+
+std::string_view line_of(const DeckFile& f, int i) {
+  size_t a = f.line_start[i], b = f.line_start[i + 1];
+  while (b > a && (f.text[b - 1] == '\n' || f.text[b - 1] == '\r')) --b;
+  return std::string_view(f.text.data() + a, b - a);
+}
+
+void refuse(const DeckFile& f, int line, const std::string& reason) {
+  throw RoundingError(ErrorCode::InvalidInput, f.path + ":" + std::to_string(line + 1) + ": " + reason);
+}
+
+std::string_view trim(std::string_view s) {
+  size_t a = 0, b = s.size();
+  while (a < b && (s[a] == ' ' || s[a] == '\t')) ++a;
+  while (b > a && (s[b - 1] == ' ' || s[b - 1] == '\t')) --b;
+  return s.substr(a, b - a);
+}
+
+std::string upper(std::string_view s) {
+  std::string out(s);
+  for (char& c : out) c = char(std::toupper(static_cast<unsigned char>(c)));
+  return out;
+}
+
+bool starts_with_ci(std::string_view s, std::string_view prefix) {
+  if (s.size() < prefix.size()) return false;
+  for (size_t i = 0; i < prefix.size(); ++i)
+    if (std::toupper(static_cast<unsigned char>(s[i])) != std::toupper(static_cast<unsigned char>(prefix[i]))) return false;
+  return true;
+}
+
+std::string_view column(std::string_view line, size_t start, size_t width) {
+  if (start >= line.size()) return {};
+  return line.substr(start, std::min(width, line.size() - start));
+}
+
+std::vector<std::string_view> split_commas(std::string_view line) {
+  std::vector<std::string_view> out;
+  size_t a = 0;
+  for (;;) {
+    size_t c = line.find(',', a);
+    out.push_back(trim(line.substr(a, c == std::string_view::npos ? std::string_view::npos : c - a)));
+    if (c == std::string_view::npos) break;
+    a = c + 1;
+  }
+  return out;
+}
+
+bool parse_int(std::string_view s, long long& out, bool blank_ok, long long blank) {
+  s = trim(s);
+  if (s.empty()) {
+    out = blank;
+    return blank_ok;
+  }
+  if (s[0] == '+') s.remove_prefix(1);
+  auto [p, ec] = std::from_chars(s.data(), s.data() + s.size(), out);
+  return ec == std::errc() && p == s.data() + s.size();
+}
+
+bool parse_real(std::string_view s, double& out, bool nastran) {
+  s = trim(s);
+  if (s.empty()) {
+    out = 0.0;
+    return true;
+  }
+  char buf[64];
+  if (s.size() > 40) return false;
+  size_t n = 0;
+  for (size_t i = 0; i < s.size(); ++i) {
+    char c = s[i];
+    if (c == ' ') return false;
+    if (c == 'd' || c == 'D') c = 'e';
+    // Nastran's implied exponent: a sign after a digit or point, not after an E ("1.5-3" is 1.5e-3).
+    if (nastran && (c == '+' || c == '-') && i > 0 && n > 0 && buf[n - 1] != 'e' && buf[n - 1] != 'E') buf[n++] = 'e';
+    buf[n++] = c;
+  }
+  const char* b = buf;
+  if (*b == '+') ++b;
+  auto [p, ec] = std::from_chars(b, buf + n, out);
+  return ec == std::errc() && p == buf + n && std::isfinite(out);
+}
+
+std::string folder_of(const std::string& path) {
+  const size_t slash = path.find_last_of('/');
+  return slash == std::string::npos ? std::string() : path.substr(0, slash + 1);
+}
+
+std::string resolve(const std::string& folder, const std::string& name) {
+  if (!name.empty() && name[0] == '/') return name;
+  return folder + name;
+}
+
+int Reader::include(int from, int line, const std::string& name) {
+  const DeckFile& parent = deck.files[from];
+  if (name.empty()) refuse(parent, line, "include without a file name");
+  if (depth >= kMaxIncludeDepth) refuse(parent, line, "includes nested more than 16 deep (a cycle?): '" + name + "'");
+  const std::string path = resolve(folder_of(parent.path), name);
+  std::string text;
+  if (!load || !load(path, text)) refuse(parent, line, "cannot read the included file '" + path + "'");
+  deck.files.push_back(make_file(path, std::move(text)));
+  return int(deck.files.size()) - 1;
+}
+
+}  // namespace decktext
+
+using namespace decktext;
+
+namespace {
+
+std::string lower_extension(const std::string& path) {
+  const size_t dot = path.find_last_of('.');
+  const size_t slash = path.find_last_of('/');
+  if (dot == std::string::npos || (slash != std::string::npos && dot < slash)) return "";
+  std::string ext = path.substr(dot + 1);
+  for (char& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
+  return ext;
+}
+
+std::string where(const Deck& d, int file, int line) { return d.files[file].path + ":" + std::to_string(line + 1); }
+
+// Unique node and shell IDs; every shell's nodes defined (node_index filled); parts referenced by shells
+// listed (LS-DYNA and Nastran decks may define a part in a file the reader does not see).
+void check_and_index(Deck& d) {
+  std::unordered_map<long long, int> node_at;
+  node_at.reserve(d.nodes.size() * 2);
+  for (int i = 0; i < int(d.nodes.size()); ++i) {
+    const DeckNode& n = d.nodes[i];
+    auto [it, fresh] = node_at.emplace(n.id, i);
+    if (!fresh) {
+      const DeckNode& o = d.nodes[it->second];
+      refuse(d.files[n.file], n.line, "node " + std::to_string(n.id) + " is defined twice (also at " + where(d, o.file, o.line) + ")");
+    }
+    d.max_node_id = std::max(d.max_node_id, n.id);
+  }
+  std::unordered_map<long long, int> shell_at;
+  shell_at.reserve(d.shells.size() * 2);
+  for (int i = 0; i < int(d.shells.size()); ++i) {
+    DeckShell& s = d.shells[i];
+    auto [it, fresh] = shell_at.emplace(s.id, i);
+    if (!fresh) {
+      const DeckShell& o = d.shells[it->second];
+      refuse(d.files[s.file], s.line, "element " + std::to_string(s.id) + " is defined twice (also at " + where(d, o.file, o.line) + ")");
+    }
+    d.max_element_id = std::max(d.max_element_id, s.id);
+    for (int k = 0; k < 4; ++k) {
+      s.node_index[k] = -1;
+      if (k >= s.count) continue;
+      auto n = node_at.find(s.nodes[k]);
+      if (n == node_at.end())
+        refuse(d.files[s.file], s.line, "element " + std::to_string(s.id) + " refers to node " + std::to_string(s.nodes[k]) + ", which the deck does not define");
+      s.node_index[k] = n->second;
+    }
+  }
+  std::vector<long long> known;
+  for (const DeckPart& p : d.parts) known.push_back(p.id);
+  std::sort(known.begin(), known.end());
+  for (const DeckShell& s : d.shells)
+    if (!std::binary_search(known.begin(), known.end(), s.part)) {
+      d.parts.push_back({s.part, ""});
+      known.insert(std::upper_bound(known.begin(), known.end(), s.part), s.part);
+    }
+}
+
+}  // namespace
+
+DeckFormat deck_format_for(const std::string& path) {
+  const std::string ext = lower_extension(path);
+  if (ext == "k" || ext == "key" || ext == "dyn") return DeckFormat::LsDyna;
+  if (ext == "bdf" || ext == "nas" || ext == "dat") return DeckFormat::Nastran;
+  if (ext == "inp") return DeckFormat::Abaqus;
+  throw RoundingError(ErrorCode::InvalidInput, "'" + path + "' is not a solver deck by its extension (.k .key .dyn: LS-DYNA, "
+                                               ".bdf .nas .dat: Nastran, .inp: Abaqus)");
+}
+
+const char* deck_format_name(DeckFormat format) {
+  switch (format) {
+    case DeckFormat::LsDyna: return "lsdyna";
+    case DeckFormat::Nastran: return "nastran";
+    default: return "abaqus";
+  }
+}
+
+Deck parse_deck(const std::string& path, std::string text, DeckFormat format, const DeckLoader& load) {
+  Deck d;
+  d.format = format;
+  d.files.push_back(make_file(path, std::move(text)));
+  Reader r{d, load};
+  switch (format) {
+    case DeckFormat::LsDyna: read_lsdyna(r, 0); break;
+    case DeckFormat::Nastran: read_nastran(r, 0); break;
+    case DeckFormat::Abaqus: read_abaqus(r, 0); break;
+  }
+  check_and_index(d);
+  return d;
+}
+
+namespace {
+bool load_file(const std::string& path, std::string& text) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) return false;
+  std::ostringstream buf;
+  buf << in.rdbuf();
+  text = buf.str();
+  return !in.bad();
+}
+}  // namespace
+
+Deck read_deck(const std::string& path) {
+  const DeckFormat format = deck_format_for(path);
+  std::string text;
+  if (!load_file(path, text)) throw RoundingError(ErrorCode::InvalidInput, "cannot read '" + path + "'");
+  return parse_deck(path, std::move(text), format, load_file);
+}
+
+}  // namespace meshround

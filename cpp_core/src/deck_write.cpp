@@ -1,0 +1,212 @@
+// write_deck(): the deck's files with edits applied; every line an edit does not name is copied byte for
+// byte (deck.h).
+#include <algorithm>
+#include <map>
+#include <unordered_map>
+#include <unordered_set>
+
+#include "deck_text.h"
+
+namespace meshround {
+
+using namespace decktext;
+
+namespace {
+
+[[noreturn]] void bad_edit(const std::string& why) { throw RoundingError(ErrorCode::InvalidInput, "deck edit: " + why); }
+
+// What happens to each line of one file.
+struct FileOut {
+  std::vector<char> drop;
+  std::map<int, std::string> replace;  // line -> text written instead (with its line end)
+  std::map<int, std::string> after;    // line -> text written after it
+};
+
+std::unordered_map<long long, int> index_of(const std::vector<long long>& ids) {
+  std::unordered_map<long long, int> at;
+  at.reserve(ids.size() * 2);
+  for (int i = 0; i < int(ids.size()); ++i) at.emplace(ids[i], i);
+  return at;
+}
+
+template <class Record>
+void drop_records(const Deck& d, const std::vector<Record>& records, const std::vector<long long>& ids, const char* what,
+                  std::vector<FileOut>& out, std::unordered_set<long long>& gone) {
+  std::vector<long long> all;
+  all.reserve(records.size());
+  for (const Record& r : records) all.push_back(r.id);
+  const auto at = index_of(all);
+  for (long long id : ids) {
+    auto it = at.find(id);
+    if (it == at.end()) bad_edit(std::string("no ") + what + " " + std::to_string(id) + " to remove");
+    if (!gone.insert(id).second) continue;
+    const Record& r = records[it->second];
+    for (int k = 0; k < r.lines; ++k) out[r.file].drop[r.line + k] = 1;
+  }
+}
+
+std::string node_text(const Deck& d, const DeckNode& n, FieldStyle style, const std::string& eol) {
+  switch (d.format) {
+    case DeckFormat::LsDyna: return lsdyna_node(n, style, eol);
+    case DeckFormat::Nastran: return nastran_node(n, style, eol);
+    default: return abaqus_node(n, eol);
+  }
+}
+
+// An Abaqus element type for a new shell of `count` nodes in `part`: the type of a shell of that part with
+// as many nodes, else the part's type turned to that count (S4R <-> S3R, S4 <-> S3, R3D4 <-> R3D3, ...).
+std::string abaqus_type(const Deck& d, long long part, int count) {
+  std::string other;
+  for (const DeckShell& s : d.shells) {
+    if (s.part != part) continue;
+    if (s.count == count) return s.type;
+    if (other.empty()) other = s.type;
+  }
+  if (other.empty()) bad_edit("part " + std::to_string(part) + " has no shell elements to take an element type from");
+  static const std::pair<const char*, const char*> pairs[] = {{"S3R", "S4R"}, {"S3", "S4"}, {"R3D3", "R3D4"}, {"M3D3", "M3D4"},
+                                                              {"S3RS", "S4RS"}, {"SFM3D3", "SFM3D4"}, {"STRI3", "S4"}};
+  for (const auto& [tri, quad] : pairs) {
+    if (count == 3 && other == quad) return tri;
+    if (count == 4 && other == tri) return quad;
+  }
+  return count == 3 ? "S3" : "S4";
+}
+
+std::string shells_text(const Deck& d, const std::vector<DeckShell>& shells, FieldStyle style, const std::string& eol) {
+  std::string out;
+  if (d.format != DeckFormat::Abaqus) {
+    for (const DeckShell& s : shells)
+      out += d.format == DeckFormat::LsDyna ? lsdyna_shell(s, style, eol) : nastran_shell(s, style, eol);
+    return out;
+  }
+  std::map<std::pair<long long, int>, std::vector<const DeckShell*>> blocks;  // (part, count) -> shells
+  for (const DeckShell& s : shells) blocks[{s.part, s.count}].push_back(&s);
+  for (const auto& [key, members] : blocks) {
+    std::string name;
+    bool known = false;
+    for (const DeckPart& p : d.parts)
+      if (p.id == key.first) name = p.name, known = true;
+    if (!known) bad_edit("part " + std::to_string(key.first) + " is not in the deck");
+    out += "*ELEMENT, TYPE=" + abaqus_type(d, key.first, key.second) + (name.empty() ? "" : ", ELSET=" + name) + eol;
+    for (const DeckShell* s : members) out += abaqus_shell(*s, eol);
+  }
+  return out;
+}
+
+// The keyword line of a set that was GENERATE, now listing its members.
+std::string without_generate(const Deck& d, const DeckSet& s) {
+  const DeckFile& f = d.files[s.file];
+  std::string line(line_of(f, s.keyword_line));
+  if (d.format == DeckFormat::LsDyna) {
+    const std::string up = upper(line);
+    const size_t at = up.find("_GENERATE");
+    if (at != std::string::npos) line.erase(at, 9);
+    return line + f.eol;
+  }
+  std::string out;
+  size_t a = 0;
+  for (;;) {
+    const size_t c = line.find(',', a);
+    const std::string tok = line.substr(a, c == std::string::npos ? std::string::npos : c - a);
+    if (upper(trim(tok)) != "GENERATE") out += (out.empty() ? "" : ",") + tok;
+    if (c == std::string::npos) break;
+    a = c + 1;
+  }
+  return out + f.eol;
+}
+
+void rewrite_sets(const Deck& d, const DeckEdits& e, std::vector<FileOut>& out) {
+  for (const auto& [index, ids] : e.set_members) {
+    if (index < 0 || index >= int(d.sets.size())) bad_edit("no set " + std::to_string(index));
+    const DeckSet& s = d.sets[index];
+    const DeckFile& f = d.files[s.file];
+    const std::string text = d.format == DeckFormat::LsDyna ? lsdyna_members(ids, s.style, f.eol)
+                                                            : abaqus_members(ids, s.named_members, f.eol);
+    FileOut& o = out[s.file];
+    if (s.data_end > s.data_begin) {
+      o.replace[s.data_begin] = text;
+      for (int l = s.data_begin + 1; l < s.data_end; ++l) o.drop[l] = 1;
+    } else {
+      o.after[s.data_begin - 1] += text;
+    }
+    if (s.generate) o.replace[s.keyword_line] = without_generate(d, s);
+  }
+}
+
+// New IDs unused and positive; every element that stays or is new refers to nodes the deck will hold.
+void check_new_ids(const Deck& d, const DeckEdits& e, const std::unordered_set<long long>& removed_nodes,
+                   const std::unordered_set<long long>& removed_shells) {
+  for (const DeckShell& s : d.shells) {
+    if (removed_shells.count(s.id)) continue;
+    for (int k = 0; k < s.count; ++k)
+      if (removed_nodes.count(s.nodes[k]))
+        bad_edit("node " + std::to_string(s.nodes[k]) + " is removed but element " + std::to_string(s.id) + " keeps it");
+  }
+  std::unordered_set<long long> nodes, elements;
+  for (const DeckNode& n : d.nodes) nodes.insert(n.id);
+  for (const DeckShell& s : d.shells) elements.insert(s.id);
+  for (const DeckNode& n : e.new_nodes) {
+    if (n.id <= 0 || !nodes.insert(n.id).second) bad_edit("new node ID " + std::to_string(n.id) + " is in use or not positive");
+    if (!n.xyz.allFinite()) bad_edit("new node " + std::to_string(n.id) + " has a non-finite coordinate");
+  }
+  for (const DeckShell& s : e.new_shells) {
+    if (s.id <= 0 || !elements.insert(s.id).second)
+      bad_edit("new element ID " + std::to_string(s.id) + " is in use or not positive");
+    if (s.count != 3 && s.count != 4) bad_edit("element " + std::to_string(s.id) + " must have 3 or 4 nodes");
+    for (int k = 0; k < s.count; ++k)
+      if (!nodes.count(s.nodes[k]) || removed_nodes.count(s.nodes[k]))
+        bad_edit("new element " + std::to_string(s.id) + " refers to node " + std::to_string(s.nodes[k]) + ", which the deck will not hold");
+  }
+}
+
+}  // namespace
+
+std::vector<std::string> write_deck(const Deck& d, const DeckEdits& e) {
+  std::vector<FileOut> out(d.files.size());
+  for (size_t i = 0; i < d.files.size(); ++i) out[i].drop.assign(d.files[i].lines(), 0);
+  std::unordered_set<long long> gone_nodes, gone_shells;
+  drop_records(d, d.nodes, e.removed_nodes, "node", out, gone_nodes);
+  drop_records(d, d.shells, e.removed_shells, "element", out, gone_shells);
+  check_new_ids(d, e, gone_nodes, gone_shells);
+  if (!e.new_nodes.empty()) {
+    if (d.nodes.empty()) bad_edit("the deck has no node record to place new nodes after");
+    const DeckNode& last = d.nodes.back();
+    const std::string& eol = d.files[last.file].eol;
+    std::string text = d.format == DeckFormat::Abaqus ? "*NODE" + eol : "";
+    for (const DeckNode& n : e.new_nodes) text += node_text(d, n, last.style, eol);
+    out[last.file].after[last.line + last.lines - 1] += text;
+  }
+  if (!e.new_shells.empty()) {
+    if (d.shells.empty()) bad_edit("the deck has no shell element to place new elements after");
+    const DeckShell& last = d.shells.back();
+    out[last.file].after[last.line + last.lines - 1] += shells_text(d, e.new_shells, last.style, d.files[last.file].eol);
+  }
+  if (!e.set_members.empty() && d.format == DeckFormat::Nastran) bad_edit("Nastran sets are not read, so cannot be rewritten");
+  rewrite_sets(d, e, out);
+
+  std::vector<std::string> texts(d.files.size());
+  for (size_t i = 0; i < d.files.size(); ++i) {
+    const DeckFile& f = d.files[i];
+    const FileOut& o = out[i];
+    std::string& t = texts[i];
+    t.reserve(f.text.size() + 64);
+    auto rep = o.replace.begin();
+    auto aft = o.after.begin();
+    for (int l = 0; l < f.lines(); ++l) {
+      if (rep != o.replace.end() && rep->first == l) {
+        t += rep->second;
+        ++rep;
+      } else if (!o.drop[l]) {
+        t.append(f.text, f.line_start[l], f.line_start[l + 1] - f.line_start[l]);
+      }
+      if (aft != o.after.end() && aft->first == l) {
+        if (!t.empty() && t.back() != '\n') t += f.eol;
+        t += aft->second;
+        ++aft;
+      }
+    }
+  }
+  return texts;
+}
+
+}  // namespace meshround
