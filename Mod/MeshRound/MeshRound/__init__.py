@@ -5,6 +5,8 @@
     obj = MeshRound.make_rounding(base_feature, seeds, radius)    # parametric Mesh feature "Rounding"
     wires = MeshRound.trace_chains(mesh, seeds)                   # the chains seeds select
     MeshRound.quality_note(res.report)                            # why new facets are under 10 deg, if any
+    MeshRound.max_radius(mesh, seeds)                             # largest radius per chain, what stops it
+    MeshRound.sweep(mesh, seeds, radii, out_dir)                  # one rounded variant per radius + table
     token = MeshRound.CancelToken()                               # round_edges(..., cancel=token); from
     token.cancel()                                                # another thread: stops the run
 
@@ -26,6 +28,11 @@ _EXPORTS = {
     "RoundingError": "errors",
     "CancelToken": "errors",
     "make_rounding": "objects.rounding",
+    # radius tools (issue 16)
+    "max_radius": "radius_limits",
+    "check_rules": "radius_limits",
+    "sweep": "sweep",
+    "optimise_radius": "sweep",
 }
 __all__ = list(_EXPORTS)
 
