@@ -125,7 +125,7 @@ def check_rules(limits, radius, thickness=None, tool="die", k=None):
             words.append(f"r = {r:g} mm is below {factors[tools[i]]:g} t = {smallest:g} mm ({tools[i]} radius rule)")
         if largest is not None and r > largest:
             flags.append("above_limit")
-            words.append(f"r = {r:g} mm is above the largest that fits, {largest:.4g} mm: {limits[i].reason}")
+            words.append(f"r = {r:g} mm is above the largest that fits, {largest:.6g} mm: {limits[i].reason}")
         rows.append(dict(chain=i, radius=r, tool=tools[i], min_radius=smallest, max_radius=largest, flags=flags,
                          message="; ".join(words)))
     return rows
