@@ -75,17 +75,53 @@ struct Bracket {
   ProfileStation ball;
 };
 
+// Another picked chain that bounds one side of this chain's (no shared vertex: chains meeting at a corner
+// are mitred there instead): the two rounds share that face, so this chain's contact on it must stay out
+// of the other round's band -- where round_edges, rounding the chains one after the other, stops the
+// later one's base mesh.
+struct Neighbour {
+  const SharpChain* chain = nullptr;
+  int side = 0;  // this chain's side the neighbour bounds
+  std::unique_ptr<Collected> collected;
+  std::unique_ptr<SpineContext> ctx;
+};
+
 struct Scan {
   const SpineContext& ctx;
   Collected& collected;
   double reach, precision;
+  std::vector<Neighbour>& neighbours;
   int solved = 0;
+
+  // The other round's band on the shared face reaches this contact: a misfit on the neighbour's edge.
+  bool in_neighbour_band(const ProfileStation& ball, double r, StationFit* fit) {
+    for (Neighbour& nb : neighbours) {
+      const Vec3 p = ball.contact[nb.side];
+      double to_other;
+      const double s_other = nb.chain->project(p, &to_other);
+      nb.collected->base.reach_distance = reach * r;
+      StationFit other_fit;
+      const ProfileStation other = fit_station(*nb.ctx, s_other, r, &other_fit);
+      ++solved;
+      if (other_fit.misfit != StationMisfit::Fits) continue;  // its own room is measured as its own chain's
+      const Vec3 q = (other.contact[0] - p).norm() < (other.contact[1] - p).norm() ? other.contact[0] : other.contact[1];
+      double band;
+      nb.chain->project(q, &band);
+      if (to_other >= band) continue;
+      const SharpChain& c = *nb.chain;
+      int i = int(std::upper_bound(c.arc_length.begin(), c.arc_length.end(), s_other) - c.arc_length.begin()) - 1;
+      i = std::clamp(i, 0, c.num_edges() - 1);
+      *fit = StationFit{StationMisfit::Wall, nb.side, p, edge_key(c.vertices[i], c.vertices[(i + 1) % c.vertices.size()])};
+      return true;
+    }
+    return false;
+  }
 
   bool fits(double s, double r, StationFit* fit, ProfileStation* ball) {
     collected.base.reach_distance = reach * r;  // what round_edges collects for r
     ++solved;
     *ball = fit_station(ctx, s, r, fit);
-    return fit->misfit == StationMisfit::Fits;
+    return fit->misfit == StationMisfit::Fits && !in_neighbour_band(*ball, r, fit);
   }
 
   Bracket run(const std::vector<double>& stations, double cap) {
@@ -140,8 +176,32 @@ RoomLimit limit_kind(const MeshTopology& mesh, const BaseMeshes& base, const Bra
   }
 }
 
-ChainRoom measure_chain(const MeshTopology& mesh, const SharpChain& chain, const std::unordered_set<std::uint64_t>& other_chains,
-                        const MaxRadiusOptions& o, double size) {
+// The picked chains that bound a side of `chain`'s base meshes and share no vertex with it, collected for
+// the same reach distance.
+std::vector<Neighbour> neighbours_of(const MeshTopology& mesh, const SharpChain& chain, const BaseMeshes& base,
+                                     const std::vector<const SharpChain*>& others, double reach_distance, double feature_angle_deg) {
+  std::vector<Neighbour> out;
+  const std::unordered_set<int> own(chain.vertices.begin(), chain.vertices.end());
+  for (const SharpChain* other : others) {
+    if (std::any_of(other->vertices.begin(), other->vertices.end(), [&](int v) { return own.count(v) > 0; })) continue;
+    for (int side = 0; side < 2; ++side) {
+      bool bounds = false;
+      for (int i = 0; i < other->num_edges() && !bounds; ++i)
+        bounds = base.walls[side].count(edge_key(other->vertices[i], other->vertices[(i + 1) % other->vertices.size()])) > 0;
+      if (!bounds) continue;
+      Neighbour nb;
+      nb.chain = other, nb.side = side;
+      nb.collected = collect(mesh, *other, reach_distance, feature_angle_deg);
+      nb.ctx = std::make_unique<SpineContext>(SpineContext{mesh, *other, nb.collected->base,
+                                                           {nb.collected->distance[0].get(), nb.collected->distance[1].get()}});
+      out.push_back(std::move(nb));
+    }
+  }
+  return out;
+}
+
+ChainRoom measure_chain(const MeshTopology& mesh, const SharpChain& chain, const std::vector<const SharpChain*>& others,
+                        const std::unordered_set<std::uint64_t>& other_chains, const MaxRadiusOptions& o, double size) {
   ChainRoom room;
   room.chain = chain.points;
   room.closed = chain.closed;
@@ -149,9 +209,11 @@ ChainRoom measure_chain(const MeshTopology& mesh, const SharpChain& chain, const
   room.stations = int(stations.size());
   double cap = size;  // no ball is larger than the mesh
   for (int round = 0; round < kMaxCollections; ++round) {
-    std::unique_ptr<Collected> c = collect(mesh, chain, o.reach * kCollectMargin * cap, o.feature_angle_deg);
+    const double reach_distance = o.reach * kCollectMargin * cap;
+    std::unique_ptr<Collected> c = collect(mesh, chain, reach_distance, o.feature_angle_deg);
     const SpineContext ctx{mesh, chain, c->base, {c->distance[0].get(), c->distance[1].get()}};
-    Scan scan{ctx, *c, o.reach, o.precision};
+    std::vector<Neighbour> neighbours = neighbours_of(mesh, chain, c->base, others, reach_distance, o.feature_angle_deg);
+    Scan scan{ctx, *c, o.reach, o.precision, neighbours};
     const Bracket b = scan.run(stations, cap);
     room.balls_solved += scan.solved;
     room.collections += 1;
@@ -184,13 +246,15 @@ std::vector<ChainRoom> max_radius(const Points& V, const Triangles& F, const std
   const double size = (V.colwise().maxCoeff() - V.colwise().minCoeff()).norm();
   std::vector<ChainRoom> out;
   for (size_t k = 0; k < chains.size(); ++k) {
-    std::unordered_set<std::uint64_t> others;
+    std::unordered_set<std::uint64_t> other_edges;
+    std::vector<const SharpChain*> others;
     for (size_t j = 0; j < chains.size(); ++j) {
       if (j == k) continue;
       const SharpChain& c = chains[j];
-      for (int i = 0; i < c.num_edges(); ++i) others.insert(edge_key(c.vertices[i], c.vertices[(i + 1) % c.vertices.size()]));
+      others.push_back(&c);
+      for (int i = 0; i < c.num_edges(); ++i) other_edges.insert(edge_key(c.vertices[i], c.vertices[(i + 1) % c.vertices.size()]));
     }
-    out.push_back(measure_chain(mesh, chains[k], others, o, size));
+    out.push_back(measure_chain(mesh, chains[k], others, other_edges, o, size));
   }
   return out;
 }

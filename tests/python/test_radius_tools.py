@@ -85,6 +85,25 @@ def test_max_radius_matches_the_closed_form_and_the_engine(name, solid, seed, li
     assert meshconv.mesh_to_arrays(mesh)[1].tolist() == F0.tolist()  # the input untouched
 
 
+def test_neighbouring_chains_share_the_face_between_them():
+    """A plate 20 wide with both top edges picked: each round may take half the top face -> 10 (alone: 20);
+    round_edges, rounding one after the other, agrees: 0.98x sound, 1.02x refused."""
+    mesh = MeshPart.meshFromShape(Shape=Part.makeBox(100, 20, 40), MaxLength=2.0)
+    V0, F0 = meshconv.mesh_to_arrays(mesh)
+    seeds = [V(50, 0, 40), V(50, 20, 40)]
+    alone = MeshRound.max_radius(mesh, seeds[:1])[0]
+    assert alone.radius == pytest.approx(20.0, rel=5e-3) and alone.why == "opposite_wall"
+    both = MeshRound.max_radius(mesh, seeds)
+    for found in both:
+        assert found.radius == pytest.approx(10.0, rel=5e-3) and found.why == "neighbouring_chain"
+        assert abs(found.where.y - 10) < 1e-2 and abs(found.where.z - 40) < 1e-3
+    res = MeshRound.round_edges(mesh, seeds, 0.98 * both[0].radius)
+    assert soundness.problems(V0, F0, res.vertices, res.triangles) == []
+    with pytest.raises(MeshRound.RoundingError) as err:
+        MeshRound.round_edges(mesh, seeds, 1.02 * both[0].radius)
+    assert err.value.code == "radius_too_large"
+
+
 def test_bad_input_is_refused_with_its_code():
     mesh = MeshPart.meshFromShape(Shape=Part.makeBox(100, 60, 40), MaxLength=8.0)
     with pytest.raises(MeshRound.RoundingError) as err:
