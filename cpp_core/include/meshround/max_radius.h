@@ -10,8 +10,11 @@
 // is what round_edges with that reach factor sees.
 //
 // A ball does not fit when a contact lies on a wall of its side (the next sharp edge, the mesh boundary),
-// beyond the reach, where the chain bends tighter than the ball (the contact line would fold back), or
-// when no ball touches both sides. Not measured here: the ends' setbacks at corners and leaning end faces
+// beyond the reach, where the chain bends tighter than the ball (the contact line would fold back), when
+// no ball touches both sides, or -- with several chains picked -- when its contact on a face shared with
+// another picked chain (one sharing no vertex with it) reaches into that chain's band, the other chain's
+// ball of the same radius solved there too (round_edges rounds them one after the other, the later one's
+// base mesh stopping at the earlier round). Not measured here: the ends' setbacks at corners and leaning end faces
 // (refused by round_edges as corner_not_blendable, "too short"), and the rounding's own output check.
 #pragma once
 #include <string>
