@@ -224,7 +224,7 @@ ChainRoom measure_chain(const MeshTopology& mesh, const SharpChain& chain, const
     room.where = b.fit.at;
     room.side = b.fit.side;
     room.chain_point = chain.point_at(b.s);
-    if (room.why == RoomLimit::Curvature) room.curvature_radius = 1 / chain_curvature(chain, b.s).norm();
+    if (room.why == RoomLimit::Curvature) room.curvature_radius = 1 / chain_curvature(chain, b.s, b.hi).norm();
     if (cap <= kCollectAgain * b.hi) break;  // collected for about this radius: what round_edges sees
     cap = kCollectMargin * b.hi;
   }
@@ -242,7 +242,8 @@ std::vector<ChainRoom> max_radius(const Points& V, const Triangles& F, const std
     throw RoundingError(ErrorCode::InvalidInput, "max_radius: precision must be in (0, 0.1) and min_stations at least 1");
   if (seeds.empty()) throw RoundingError(ErrorCode::InvalidInput, "no seed given: pick a point on a sharp edge");
   const MeshTopology mesh(V, F);
-  const std::vector<SharpChain> chains = find_chains(mesh, seeds, o.feature_angle_deg, o.search_radius);
+  std::vector<SharpChain> chains = find_chains(mesh, seeds, o.feature_angle_deg, o.search_radius);
+  for (SharpChain& c : chains) c.index_segments();  // project() is called for every ball's contacts
   const double size = (V.colwise().maxCoeff() - V.colwise().minCoeff()).norm();
   std::vector<ChainRoom> out;
   for (size_t k = 0; k < chains.size(); ++k) {

@@ -82,39 +82,43 @@ std::uint64_t wall_touched(const MeshTopology& mesh, int f, int code, const std:
 // lies at (or past) the chain's centre of curvature.
 constexpr double kFoldRatio = 1.0;
 
-// A chain vertex's neighbours closer than this share of the chain's length are skipped when its
-// curvature is measured (float32 jitter on a tiny edge would read as a tight bend).
+// The chain's curvature for a ball of radius r is measured over +-kCurvatureSpan * r of arc length: the
+// circle through the chain's points there. A ball's contact line folds where the chain turns within about
+// its offset, so a polygon's turns are smoothed over that scale, not read vertex by vertex (a mesh whose
+// straight chain edges are split in two would otherwise double its curvature at every turn).
+constexpr double kCurvatureSpan = 0.5;
+// A span shorter than this share of the chain's length is not measured (float32 jitter would read as a bend).
 constexpr double kCurvatureMinStep = 1e-3;
+
+// The chain vertex nearest arc length s (wrapped on a loop).
+int vertex_near(const SharpChain& chain, double s) {
+  const int n = int(chain.points.size());
+  const double L = chain.length;
+  if (chain.closed) s -= L * std::floor(s / L);
+  int i = int(std::lower_bound(chain.arc_length.begin(), chain.arc_length.end(), s) - chain.arc_length.begin());
+  if (i >= n) return chain.closed && L - s < s - chain.arc_length[n - 1] ? 0 : n - 1;
+  if (i > 0 && s - chain.arc_length[i - 1] < chain.arc_length[i] - s) --i;
+  return i;
+}
 
 }  // namespace
 
-Vec3 chain_curvature(const SharpChain& chain, double s) {
-  const int n = int(chain.points.size());
-  if (n < 3) return Vec3::Zero();
+Vec3 chain_curvature(const SharpChain& chain, double s, double r) {
   const double L = chain.length;
-  if (chain.closed) s = s - L * std::floor(s / L);
-  const auto at = std::lower_bound(chain.arc_length.begin(), chain.arc_length.end(), s);
-  int i = int(at - chain.arc_length.begin());
-  if (i >= n || (i > 0 && s - chain.arc_length[i - 1] < chain.arc_length[i] - s)) --i;
-  if (chain.closed && i == n - 1 && L - s < s - chain.arc_length[i]) i = 0;  // nearer the closing vertex
-  if (!chain.closed && (i == 0 || i == n - 1)) return Vec3::Zero();
-  const double step = kCurvatureMinStep * L;
-  const Vec3 p = chain.points[i];
-  auto neighbour = [&](int dir) {
-    int j = i;
-    for (int k = 1; k < n; ++k) {
-      j = chain.closed ? ((i + dir * k) % n + n) % n : i + dir * k;
-      if (!chain.closed && (j == 0 || j == n - 1)) break;
-      if ((chain.points[j] - p).norm() >= step) break;
-    }
-    return chain.points[j];
-  };
-  const Vec3 a = neighbour(-1) - p, b = neighbour(1) - p;
+  const double h = std::max(kCurvatureSpan * r, kCurvatureMinStep * L);
+  double lo = s - h, hi = s + h;
+  if (!chain.closed) lo = std::max(lo, 0.0), hi = std::min(hi, L);
+  if (std::min(s - lo, hi - s) < kCurvatureMinStep * L || 2 * h >= L) return Vec3::Zero();
+  // The chain's vertices there (a CAD mesh's lie on the exact curve, points between them on its chords).
+  const int i0 = vertex_near(chain, lo), i1 = vertex_near(chain, s), i2 = vertex_near(chain, hi);
+  if (i0 == i1 || i1 == i2 || i0 == i2) return Vec3::Zero();
+  const Vec3 p = chain.points[i1], a = chain.points[i0] - p, b = chain.points[i2] - p;
   const Vec3 axb = a.cross(b);
   const double d = 2 * axb.squaredNorm();
-  if (d <= 1e-24 * a.squaredNorm() * b.squaredNorm() || d == 0) return Vec3::Zero();
-  const Vec3 centre = (a.squaredNorm() * b.cross(axb) + b.squaredNorm() * axb.cross(a)) / d;  // circumcentre - p
-  return centre / centre.squaredNorm();
+  if (!(d > 1e-24 * a.squaredNorm() * b.squaredNorm())) return Vec3::Zero();
+  // From the chain point at s to the circumcentre C: kappa . (q - e) >= 1 exactly when q lies at or past C.
+  const Vec3 to_centre = p + (a.squaredNorm() * b.cross(axb) + b.squaredNorm() * axb.cross(a)) / d - chain.point_at(s);
+  return to_centre / to_centre.squaredNorm();
 }
 
 ProfileStation fit_station(const SpineContext& ctx, double s, double r, StationFit* fit) {
@@ -193,7 +197,7 @@ ProfileStation fit_station(const SpineContext& ctx, double s, double r, StationF
   }
   // The chain's own curvature: the contact lines and the spine are offsets of the chain; one that reaches
   // the chain's centre of curvature folds back (its trim line would cross itself).
-  const Vec3 kappa = chain_curvature(chain, s);
+  const Vec3 kappa = chain_curvature(chain, s, r);
   const Vec3 points[3] = {st.contact[0], st.contact[1], st.centre};
   for (int k = 0; k < 3; ++k)
     if (kappa.dot(points[k] - e) >= kFoldRatio) {
@@ -223,7 +227,7 @@ ProfileStation solve_station(const SpineContext& ctx, double s, double r) {
     case StationMisfit::Curvature:
       throw RoundingError(ErrorCode::RadiusTooLarge, "radius " + format_number(r) + " is too large at " + format_point(e) +
                           ": the chain bends tighter than the ball there (its centre of curvature is " +
-                          format_number(1 / chain_curvature(ctx.chain, s).norm()) + " mm away), so the round's edge would fold back at " +
+                          format_number(1 / chain_curvature(ctx.chain, s, r).norm()) + " mm away), so the round's edge would fold back at " +
                           format_point(fit.at));
   }
   return st;

@@ -76,7 +76,7 @@ def test_max_radius_matches_the_closed_form_and_the_engine(name, solid, seed, li
     assert found.why == why, found.reason
     assert where(found.where), found.where
     if why == "curvature":
-        assert found.curvature_radius == pytest.approx(20.0, rel=1e-3)
+        assert found.curvature_radius == pytest.approx(20.0, rel=2e-3)  # from the chain point, on a chord
     res = MeshRound.round_edges(mesh, [seed], 0.98 * found.radius)
     assert soundness.problems(V0, F0, res.vertices, res.triangles) == []
     with pytest.raises(MeshRound.RoundingError) as err:

@@ -88,9 +88,10 @@ ProfileStation fit_station(const SpineContext& ctx, double s, double r, StationF
 // radius fits between the base meshes there (fit_station's misfits: radius_too_large, beyond_reach).
 ProfileStation solve_station(const SpineContext& ctx, double s, double r);
 
-// The curvature vector of the chain near arc length s (towards its centre of curvature, length 1/radius),
-// from the circle through the chain vertex nearest s and its neighbours; zero at an open chain's ends and
-// where the chain is straight.
-Vec3 chain_curvature(const SharpChain& chain, double s);
+// The curvature vector of the chain at arc length s as a ball of radius r sees it: from the chain point at
+// s towards the centre C of the circle through the chain's vertices nearest s and r/2 of arc length either
+// side (clamped at an open chain's ends), of length 1 / |C - point|; zero where the chain is straight or
+// shorter than r.
+Vec3 chain_curvature(const SharpChain& chain, double s, double r);
 
 }  // namespace meshround
