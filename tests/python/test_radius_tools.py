@@ -115,14 +115,20 @@ def test_bad_input_is_refused_with_its_code():
 
 
 def test_rules_flag_below_k_t_and_above_the_limit():
+    """The shoulder and the floor edge of one 12 mm channel wall: picked together they share the wall,
+    6 mm each (alone 12)."""
     mesh = MeshPart.meshFromShape(Shape=channel(30, 12), MaxLength=4.0)
+    assert round(MeshRound.max_radius(mesh, [V(50, 15, 30)])[0].radius, 1) == 12.0
     limits = MeshRound.max_radius(mesh, [V(50, 15, 30), V(50, 15, 18)])
-    assert [round(lim.radius, 1) for lim in limits] == [12.0, 12.0]
-    rows = MeshRound.check_rules(limits, [3.0, 13.0], thickness=1.0, tool=["die", "punch"])
+    assert [round(lim.radius, 1) for lim in limits] == [6.0, 6.0]
+    assert [lim.why for lim in limits] == ["neighbouring_chain"] * 2
+    rows = MeshRound.check_rules(limits, [3.0, 7.0], thickness=1.0, tool=["die", "punch"])
     assert rows[0]["flags"] == ["below_k_t"] and rows[0]["min_radius"] == 5.0   # die: 5 t
     assert rows[1]["flags"] == ["above_limit"] and rows[1]["min_radius"] == 4.0  # punch: 4 t
-    assert MeshRound.check_rules(limits, 6.0, thickness=1.0)[0]["flags"] == []
-    assert MeshRound.check_rules(limits, 6.0, thickness=1.0, k={"die": 7})[0]["flags"] == ["below_k_t"]
+    assert "6 mm" in rows[1]["message"] or "5.99" in rows[1]["message"]
+    assert MeshRound.check_rules(limits, 5.5, thickness=1.0)[0]["flags"] == []
+    assert MeshRound.check_rules(limits, 5.5, thickness=1.0, k={"die": 7})[0]["flags"] == ["below_k_t"]
+    assert MeshRound.check_rules(None, 5.5)[0]["flags"] == []  # no limits, no thickness: nothing to flag
 
 
 def box_edge_mesh():
@@ -200,3 +206,20 @@ def test_command_line_max_radius_and_sweep(tmp_path):
     assert len([f for f in os.listdir(tmp_path / "variants") if f.endswith(".stl")]) == 2
     out = run_cli("sweep", src, str(tmp_path / "v2"), "--seed", "50,60,40", "--radius", "3:10:0.5x")
     assert out.returncode == 2
+
+
+def test_sweep_features_make_one_parametric_rounding_per_radius():
+    import FreeCAD
+    mesh, seeds = box_edge_mesh()
+    doc = FreeCAD.newDocument("SweepFeatures")
+    try:
+        base = doc.addObject("Mesh::Feature", "Box")
+        base.Mesh = mesh
+        features = MeshRound.sweep_features(base, seeds, [4.0, 8.5])
+        doc.recompute()
+        assert [f.Name for f in features] == ["Rounding_r4", "Rounding_r8_5"]
+        for f, r in zip(features, (4.0, 8.5)):
+            assert f.Radius.Value == r and "Invalid" not in f.State
+            assert f.Mesh.Volume == pytest.approx(100 * 60 * 40 - (1 - math.pi / 4) * r * r * 100, rel=2e-3)
+    finally:
+        FreeCAD.closeDocument(doc.Name)

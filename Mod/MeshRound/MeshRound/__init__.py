@@ -33,6 +33,7 @@ _EXPORTS = {
     "check_rules": "radius_limits",
     "sweep": "sweep",
     "optimise_radius": "sweep",
+    "sweep_features": "sweep",
 }
 __all__ = list(_EXPORTS)
 

@@ -234,3 +234,15 @@ def optimise_radius(mesh, seeds, objective, bounds=None, out_dir=None, fmt="stl"
     best = min((e for e in evaluations if e[2]), key=lambda e: e[1], default=(float(found.x), math.inf, None))
     return OptimiseResult(radius=best[0], value=best[1], path=best[2], evaluations=evaluations, bounds=(low, high),
                           scipy_result=found)
+
+
+def sweep_features(base, seeds, radii, tolerance=0, feature_angle=30, reach=3, doc=None):
+    """In FreeCAD: one parametric Rounding of mesh feature `base` per radius (named Rounding_r<radius>),
+    each recomputing on its own like any Rounding; no recompute here.  Returns the features."""
+    from .objects.rounding import make_rounding
+    features = []
+    for r in radii:
+        name = f"Rounding_r{float(r):g}".replace(".", "_")
+        features.append(make_rounding(base, seeds, float(r), tolerance=tolerance, feature_angle=feature_angle,
+                                      reach=reach, name=name, doc=doc))
+    return features
