@@ -9,6 +9,7 @@
 
 #include <atomic>
 
+#include "meshround/max_radius.h"
 #include "meshround/round.h"
 
 namespace py = pybind11;
@@ -165,6 +166,33 @@ py::list trace_chains_py(const py::array& vertices, const py::array& triangles, 
   return out;
 }
 
+// max_radius (issue 16): one dict per chain, see max_radius.h.
+py::list max_radius_py(const py::array& vertices, const py::array& triangles, const py::array& seeds, double feature_angle,
+                       double reach, double precision, int min_stations) {
+  const Points V = to_points(vertices, "vertices");
+  const Triangles F = to_triangles(triangles);
+  const Points S = to_points(seeds, "seeds");
+  MaxRadiusOptions o;
+  o.feature_angle_deg = feature_angle, o.reach = reach, o.precision = precision, o.min_stations = min_stations;
+  std::vector<ChainRoom> rooms;
+  {
+    py::gil_scoped_release release;
+    rooms = guarded([&] { return max_radius(V, F, to_vecs(S), o); });
+  }
+  py::list out;
+  for (const ChainRoom& c : rooms) {
+    py::dict d;
+    d["radius"] = c.radius, d["radius_refused"] = c.radius_refused, d["why"] = room_limit_name(c.why);
+    d["where"] = py::make_tuple(c.where.x(), c.where.y(), c.where.z());
+    d["chain_point"] = py::make_tuple(c.chain_point.x(), c.chain_point.y(), c.chain_point.z());
+    d["curvature_radius"] = c.curvature_radius, d["side"] = c.side;
+    d["stations"] = c.stations, d["balls_solved"] = c.balls_solved, d["collections"] = c.collections;
+    d["points"] = polyline(c.chain), d["closed"] = c.closed;
+    out.append(d);
+  }
+  return out;
+}
+
 }  // namespace
 
 // Solver decks (deck_bindings.cpp).
@@ -220,4 +248,7 @@ PYBIND11_MODULE(_meshround_core, m) {
   m.def("trace_chains", &trace_chains_py, py::arg("vertices"), py::arg("triangles"), py::arg("seeds"),
         py::arg("feature_angle") = 30.0, py::arg("search_radius") = 0.0, "The sharp-edge chains the seeds select: [{'points': (c, 3), 'closed': bool}].");
   bind_decks(m);
+  m.def("max_radius", &max_radius_py, py::arg("vertices"), py::arg("triangles"), py::arg("seeds"), py::arg("feature_angle") = 30.0,
+        py::arg("reach") = 3.0, py::arg("precision") = 1e-4, py::arg("min_stations") = 256,
+        "The largest radius each chain the seeds select can be rounded with, what stops it and where (max_radius.h).");
 }

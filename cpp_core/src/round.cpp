@@ -492,7 +492,12 @@ std::vector<SharpChain> find_chains(const Points& V, const Triangles& F, const s
   checked.feature_angle_deg = feature_angle_deg;
   validate_options(checked);
   const MeshTopology mesh(V, F);
-  if (!(search_radius > 0)) search_radius = 0.05 * (V.colwise().maxCoeff() - V.colwise().minCoeff()).norm();
+  return find_chains(mesh, seeds, feature_angle_deg, search_radius);
+}
+
+std::vector<SharpChain> find_chains(const MeshTopology& mesh, const std::vector<Vec3>& seeds, double feature_angle_deg,
+                                    double search_radius) {
+  if (!(search_radius > 0)) search_radius = 0.05 * (mesh.V.colwise().maxCoeff() - mesh.V.colwise().minCoeff()).norm();
   std::vector<SharpChain> chains;
   std::set<std::vector<int>> seen;
   for (const Vec3& seed : seeds) {

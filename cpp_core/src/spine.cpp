@@ -61,18 +61,68 @@ std::uint64_t region_edge(const MeshTopology& mesh, int f, int code) {
   return edge_key(mesh.F(f, code - 1), mesh.F(f, code % 3));
 }
 
-// A vertex contact (region code 4..6) on an end of one of `edges`: the ball touches that wall there too.
-bool vertex_on(const MeshTopology& mesh, int f, int code, const std::unordered_set<std::uint64_t>& edges) {
-  if (code < 4 || code > 6 || edges.empty()) return false;
+// A vertex contact (region code 4..6) on an end of one of `edges`: the ball touches that wall there too;
+// the key of one such edge, or ~0.
+std::uint64_t vertex_on(const MeshTopology& mesh, int f, int code, const std::unordered_set<std::uint64_t>& edges) {
+  if (code < 4 || code > 6 || edges.empty()) return ~0ull;
   const int v = mesh.F(f, code - 4);
   for (int u : mesh.vertex_neighbours(v))
-    if (edges.count(edge_key(v, u))) return true;
-  return false;
+    if (edges.count(edge_key(v, u))) return edge_key(v, u);
+  return ~0ull;
+}
+
+// The wall edge of `edges` a contact (facet f, region code) lies on, or ~0.
+std::uint64_t wall_touched(const MeshTopology& mesh, int f, int code, const std::unordered_set<std::uint64_t>& edges) {
+  const std::uint64_t on_edge = region_edge(mesh, f, code);
+  if (on_edge != ~0ull && edges.count(on_edge)) return on_edge;
+  return vertex_on(mesh, f, code, edges);
+}
+
+// How far a line traced along the chain may fold: a point p of the ball with curvature . (p - e) >= this
+// lies at (or past) the chain's centre of curvature.
+constexpr double kFoldRatio = 1.0;
+
+// The chain's curvature for a ball of radius r is measured over +-kCurvatureSpan * r of arc length: the
+// circle through the chain's points there. A ball's contact line folds where the chain turns within about
+// its offset, so a polygon's turns are smoothed over that scale, not read vertex by vertex (a mesh whose
+// straight chain edges are split in two would otherwise double its curvature at every turn).
+constexpr double kCurvatureSpan = 0.5;
+// A span shorter than this share of the chain's length is not measured (float32 jitter would read as a bend).
+constexpr double kCurvatureMinStep = 1e-3;
+
+// The chain vertex nearest arc length s (wrapped on a loop).
+int vertex_near(const SharpChain& chain, double s) {
+  const int n = int(chain.points.size());
+  const double L = chain.length;
+  if (chain.closed) s -= L * std::floor(s / L);
+  int i = int(std::lower_bound(chain.arc_length.begin(), chain.arc_length.end(), s) - chain.arc_length.begin());
+  if (i >= n) return chain.closed && L - s < s - chain.arc_length[n - 1] ? 0 : n - 1;
+  if (i > 0 && s - chain.arc_length[i - 1] < chain.arc_length[i] - s) --i;
+  return i;
 }
 
 }  // namespace
 
-ProfileStation solve_station(const SpineContext& ctx, double s, double r) {
+Vec3 chain_curvature(const SharpChain& chain, double s, double r) {
+  const double L = chain.length;
+  const double h = std::max(kCurvatureSpan * r, kCurvatureMinStep * L);
+  double lo = s - h, hi = s + h;
+  if (!chain.closed) lo = std::max(lo, 0.0), hi = std::min(hi, L);
+  if (std::min(s - lo, hi - s) < kCurvatureMinStep * L || 2 * h >= L) return Vec3::Zero();
+  // The chain's vertices there (a CAD mesh's lie on the exact curve, points between them on its chords).
+  const int i0 = vertex_near(chain, lo), i1 = vertex_near(chain, s), i2 = vertex_near(chain, hi);
+  if (i0 == i1 || i1 == i2 || i0 == i2) return Vec3::Zero();
+  const Vec3 p = chain.points[i1], a = chain.points[i0] - p, b = chain.points[i2] - p;
+  const Vec3 axb = a.cross(b);
+  const double d = 2 * axb.squaredNorm();
+  if (!(d > 1e-24 * a.squaredNorm() * b.squaredNorm())) return Vec3::Zero();
+  // From the chain point at s to the circumcentre C: kappa . (q - e) >= 1 exactly when q lies at or past C.
+  const Vec3 to_centre = p + (a.squaredNorm() * b.cross(axb) + b.squaredNorm() * axb.cross(a)) / d - chain.point_at(s);
+  return to_centre / to_centre.squaredNorm();
+}
+
+ProfileStation fit_station(const SpineContext& ctx, double s, double r, StationFit* fit) {
+  *fit = StationFit{};
   const SharpChain& chain = ctx.chain;
   const Vec3 e = chain.point_at(s), t = chain.tangent_at(s);
   // Local wedge of the two facets at this chain edge: the start of Newton and the side of the ball.
@@ -87,20 +137,22 @@ ProfileStation solve_station(const SpineContext& ctx, double s, double r) {
       if (d < best) best = d, seg = i, local = tt;
     }
   }
+  ProfileStation st;
+  st.s = s;
+  st.radius = r;
   const Vec3 dir = (chain.points[(seg + 1) % chain.points.size()] - chain.points[seg]).normalized();
   const Vec3 dA = into_facet(ctx.mesh, chain.facet_a[seg], e, dir), dB = into_facet(ctx.mesh, chain.facet_b[seg], e, dir);
   const Vec3 nA = (dB - dB.dot(dA) * dA).normalized(), nB = (dA - dA.dot(dB) * dB).normalized();
   Eigen::Matrix3d M;
   M << nA.transpose(), nB.transpose(), t.transpose();
-  if (std::abs(M.determinant()) < 1e-9)
-    throw RoundingError(ErrorCode::RadiusTooLarge, "the edge at " + format_point(e) + " is flat or folded back: no ball fits there");
+  if (std::abs(M.determinant()) < 1e-9) {
+    fit->misfit = StationMisfit::FlatEdge, fit->at = e;
+    return st;
+  }
   Vec3 c = e + M.inverse() * Vec3(r, r, 0);
 
   // Newton in the section plane on (dist_A(c) - r, dist_B(c) - r).
   const Vec3 u1 = (std::abs(t.x()) < 0.9 ? Vec3::UnitX() : Vec3::UnitY()).cross(t).normalized(), u2 = t.cross(u1);
-  ProfileStation st;
-  st.s = s;
-  st.radius = r;
   int facet[2] = {-1, -1}, code[2] = {0, 0};
   double residual = INFINITY;
   for (int iter = 0; iter < 60; ++iter) {
@@ -122,25 +174,61 @@ ProfileStation solve_station(const SpineContext& ctx, double s, double r) {
     c += step(0) * u1 + step(1) * u2;
   }
   st.centre = c;
-  if (residual > 1e-6 * std::max(1.0, r) || (c - e).dot(nA + nB) <= 0)
-    throw RoundingError(ErrorCode::RadiusTooLarge, "no ball of radius " + format_number(r) + " touches both base meshes at " + format_point(e) +
-                        ": the radius is too large for the faces there");
+  if (residual > 1e-6 * std::max(1.0, r) || (c - e).dot(nA + nB) <= 0) {
+    fit->misfit = StationMisfit::NoBall, fit->at = e;
+    return st;
+  }
   const bool at_end = !chain.closed && (s <= 1e-9 * chain.length || s >= chain.length * (1 - 1e-9));
   for (int k = 0; k < 2; ++k) {
     st.region[k] = region_kind(code[k]);
-    const std::uint64_t wall = region_edge(ctx.mesh, facet[k], code[k]);
-    if (!at_end && (ctx.base.walls[k].count(wall) || vertex_on(ctx.mesh, facet[k], code[k], ctx.base.walls[k])))
-      throw RoundingError(ErrorCode::RadiusTooLarge, "radius " + format_number(r) + " is too large at " + format_point(e) +
-                          ": the ball would reach past the next sharp edge or the mesh boundary at " +
-                          format_point(st.contact[k]));
+    const std::uint64_t wall = at_end ? ~0ull : wall_touched(ctx.mesh, facet[k], code[k], ctx.base.walls[k]);
+    if (wall != ~0ull) {
+      *fit = StationFit{StationMisfit::Wall, k, st.contact[k], wall};
+      return st;
+    }
     // Beyond the reach either on the base meshes' edge there, or inside one of their facets (a coarse
     // or CAD facet runs past the reach): the band would not fit in what was collected.
     double from_chain = 0;
     ctx.chain.project(st.contact[k], &from_chain);
-    if (ctx.base.reach_limit[k].count(wall) || vertex_on(ctx.mesh, facet[k], code[k], ctx.base.reach_limit[k]) ||
-        from_chain > ctx.base.reach_distance)
+    if (wall_touched(ctx.mesh, facet[k], code[k], ctx.base.reach_limit[k]) != ~0ull || from_chain > ctx.base.reach_distance) {
+      *fit = StationFit{StationMisfit::BeyondReach, k, st.contact[k]};
+      return st;
+    }
+  }
+  // The chain's own curvature: the contact lines and the spine are offsets of the chain; one that reaches
+  // the chain's centre of curvature folds back (its trim line would cross itself).
+  const Vec3 kappa = chain_curvature(chain, s, r);
+  const Vec3 points[3] = {st.contact[0], st.contact[1], st.centre};
+  for (int k = 0; k < 3; ++k)
+    if (kappa.dot(points[k] - e) >= kFoldRatio) {
+      *fit = StationFit{StationMisfit::Curvature, k < 2 ? k : 0, points[k]};
+      return st;
+    }
+  return st;
+}
+
+ProfileStation solve_station(const SpineContext& ctx, double s, double r) {
+  StationFit fit;
+  ProfileStation st = fit_station(ctx, s, r, &fit);
+  const Vec3 e = ctx.chain.point_at(s);
+  switch (fit.misfit) {
+    case StationMisfit::Fits: return st;
+    case StationMisfit::FlatEdge:
+      throw RoundingError(ErrorCode::RadiusTooLarge, "the edge at " + format_point(e) + " is flat or folded back: no ball fits there");
+    case StationMisfit::NoBall:
+      throw RoundingError(ErrorCode::RadiusTooLarge, "no ball of radius " + format_number(r) + " touches both base meshes at " + format_point(e) +
+                          ": the radius is too large for the faces there");
+    case StationMisfit::Wall:
+      throw RoundingError(ErrorCode::RadiusTooLarge, "radius " + format_number(r) + " is too large at " + format_point(e) +
+                          ": the ball would reach past the next sharp edge or the mesh boundary at " + format_point(fit.at));
+    case StationMisfit::BeyondReach:
       throw RoundingError(ErrorCode::BeyondReach, "the ball at " + format_point(e) + " touches the base mesh beyond the reach; "
                           "increase the reach factor");
+    case StationMisfit::Curvature:
+      throw RoundingError(ErrorCode::RadiusTooLarge, "radius " + format_number(r) + " is too large at " + format_point(e) +
+                          ": the chain bends tighter than the ball there (its centre of curvature is " +
+                          format_number(1 / chain_curvature(ctx.chain, s, r).norm()) + " mm away), so the round's edge would fold back at " +
+                          format_point(fit.at));
   }
   return st;
 }

@@ -174,6 +174,10 @@ def ok_failure_then_cancel(doc, box, active_panel):
     panel = active_panel()
     panel.add_seed(BACK_EDGE_SEED)
     panel.set_radius(70.0)  # larger than the box: the ball reaches past the next sharp edges
+    panel.preview_now()  # refused before the engine runs: the limit (max_radius) and why, beside the field
+    step("past_limit", {"limit": panel.form.radius_limit.text(), "style": panel.form.radius_limit.styleSheet(),
+                        "status": panel.form.status.text(), "no_preview": panel.result is None,
+                        "tolerance_label": panel.form.tolerance.parent().layout().labelForField(panel.form.tolerance).text()})
     press_task_button("ok")
     step("ok_failure", {
         "panel_open": active_panel() is panel and bool(FreeCADGui.Control.activeDialog()),

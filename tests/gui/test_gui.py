@@ -97,6 +97,10 @@ def test_errors_show_in_red_and_preview_works(observed):
 
 
 def test_ok_that_fails_keeps_the_panel_open_and_the_document_unchanged(observed):
+    past = observed["past_limit"]  # the radius limit beside the field, red past it; no preview is run
+    assert "too large: the largest that fits is 40 mm" in past["limit"] and "c00000" in past["style"]
+    assert past["status"] == past["limit"] and past["no_preview"]
+    assert "automatic, radius / 100" in past["tolerance_label"]
     failure = observed["ok_failure"]
     assert failure["panel_open"]
     assert "too large" in failure["status"]  # the engine's reason, in the panel

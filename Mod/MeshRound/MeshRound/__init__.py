@@ -7,6 +7,8 @@
     MeshRound.quality_note(res.report)                            # why new facets are under 10 deg, if any
     deck = MeshRound.read_deck("die.k")                           # solver deck (LS-DYNA/Nastran/Abaqus) as arrays
     res = MeshRound.round_deck("die.k", "die_r5.k", seeds, 5)     # round a deck, write it back (decks.py)
+    MeshRound.max_radius(mesh, seeds)                             # largest radius per chain, what stops it
+    MeshRound.sweep(mesh, seeds, radii, out_dir)                  # one rounded variant per radius + table
     token = MeshRound.CancelToken()                               # round_edges(..., cancel=token); from
     token.cancel()                                                # another thread: stops the run
 
@@ -30,6 +32,12 @@ _EXPORTS = {
     "make_rounding": "objects.rounding",
     "read_deck": "decks",
     "round_deck": "decks",
+    # radius tools (issue 16)
+    "max_radius": "radius_limits",
+    "check_rules": "radius_limits",
+    "sweep": "sweep",
+    "optimise_radius": "sweep",
+    "sweep_features": "sweep",
 }
 __all__ = list(_EXPORTS)
 

@@ -5,6 +5,8 @@
     (IN and OUT both solver decks -- .k .key .dyn / .bdf .nas .dat / .inp, one family -- round the deck
     and write it back with its IDs, parts, sets and other cards kept: MeshRound.decks)
     meshround demo [--out DIR]
+    meshround max-radius IN --seed X,Y,Z [...]          (cli_radius.py)
+    meshround sweep IN OUTDIR --seed X,Y,Z [...] --radius 3:10:0.5
 
 Run as `/usr/bin/python3 -m MeshRound.cli ...` with Mod/MeshRound on sys.path (the `meshround` wrapper
 next to this package does that).  Exit status: 0 done, 1 the work failed (unreadable input, no sharp
@@ -109,6 +111,8 @@ def build_parser():
                     "r = 3 -> 8 -> 3 mm, and write the meshes (STL, OBJ), an FCStd with the Rounding "
                     "features, a JSON report and a before/after PNG into DIR (resources/srail_demo.py).")
     demo.add_argument("--out", metavar="DIR", default="out", help="output folder (default: out)")
+    from . import cli_radius
+    cli_radius.add_parsers(commands, point, _finite)
     return parser
 
 
@@ -193,6 +197,15 @@ def run_round_deck(args):
           f"{d['elements_in']} elements replaced by {d['new_quads']} quads and {d['new_triangles']} triangles, "
           f"{d['nodes_new']} new nodes, {len(d['sets_updated'])} set(s) updated, "
           f"{res.report.get('seconds', 0.0):.2f} s -> {', '.join(res.paths)}")
+def run_radius_tool(args):
+    """max-radius and sweep (cli_radius.py)."""
+    from . import cli_radius
+    Mesh, MeshRound = _import_freecad()
+    mesh = _read_mesh(Mesh, args.input)
+    if args.command == "max-radius":
+        cli_radius.run_max_radius(args, MeshRound, mesh, Failure, _dump_json)
+    else:
+        cli_radius.run_sweep(args, MeshRound, mesh, Failure)
 
 
 def demo_script():
@@ -286,6 +299,8 @@ def main(argv=None):
             check_extensions(parser, args)
             check_options(parser, args)
             run_round(args)
+        elif args.command in ("max-radius", "sweep"):
+            run_radius_tool(args)
         else:
             run_demo(args.out)
     except Failure as exc:

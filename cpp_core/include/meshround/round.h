@@ -74,5 +74,8 @@ RoundResult round_edges(const Points& V, const Triangles& F, const std::vector<V
 // search_radius from every sharp edge is an error; <= 0 means 5% of the mesh's bounding-box diagonal.
 std::vector<SharpChain> find_chains(const Points& V, const Triangles& F, const std::vector<Vec3>& seeds,
                                     double feature_angle_deg, double search_radius = 0);
+// The same on a mesh's topology built already (the options are not checked here).
+std::vector<SharpChain> find_chains(const MeshTopology& mesh, const std::vector<Vec3>& seeds, double feature_angle_deg,
+                                    double search_radius = 0);
 
 }  // namespace meshround

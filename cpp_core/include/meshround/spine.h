@@ -62,8 +62,36 @@ struct SpineContext {
   const BaseDistance* distance[2];
 };
 
+// Why a ball of radius r does not fit at a station (fit_station), or Fits.
+enum class StationMisfit {
+  Fits,
+  FlatEdge,     // the two facets at the chain are flat or folded back there: no wedge to start from
+  NoBall,       // Newton found no ball touching both base meshes (the edge is flat there, or the faces part)
+  Wall,         // a contact lies on a wall of its base mesh: the next sharp edge or the mesh boundary
+  BeyondReach,  // a contact lies beyond the reach the base meshes were collected for
+  Curvature,    // the chain's own curvature: a contact (or the centre) lies at or past the chain's centre of
+                // curvature, so the line it traces along the chain folds back on itself
+};
+struct StationFit {
+  StationMisfit misfit = StationMisfit::Fits;
+  int side = -1;                    // the side (0 = A, 1 = B) that stops the ball; -1 for FlatEdge, NoBall
+  Vec3 at = Vec3::Zero();           // where: the contact on the wall / past the reach, the point that folds
+  std::uint64_t wall_edge = ~0ull;  // Wall: the wall edge touched (for a vertex contact, a wall edge at it)
+};
+
+// The ball of radius r at arc length s, and whether it fits (`fit`); never throws for a misfit. The one
+// place the rules of a ball's room are checked: solve_station refuses by them, max_radius (max_radius.h)
+// measures by them.
+ProfileStation fit_station(const SpineContext& ctx, double s, double r, StationFit* fit);
+
 // The ball of radius r at arc length s. Throws RoundingError (naming the place) when no ball of that
-// radius fits between the base meshes there.
+// radius fits between the base meshes there (fit_station's misfits: radius_too_large, beyond_reach).
 ProfileStation solve_station(const SpineContext& ctx, double s, double r);
+
+// The curvature vector of the chain at arc length s as a ball of radius r sees it: from the chain point at
+// s towards the centre C of the circle through the chain's vertices nearest s and r/2 of arc length either
+// side (clamped at an open chain's ends), of length 1 / |C - point|; zero where the chain is straight or
+// shorter than r.
+Vec3 chain_curvature(const SharpChain& chain, double s, double r);
 
 }  // namespace meshround

@@ -21,7 +21,7 @@ import FreeCAD
 import FreeCADGui
 from PySide import QtCore, QtGui
 
-from .. import api, meshconv, progress, shapes
+from .. import api, meshconv, progress, radius_limits, shapes
 from ..errors import RoundingError
 from . import overlays
 from .round_edges_form import PICK_LAW_POINT, RoundEdgesForm, quantity_value
@@ -51,6 +51,7 @@ class RoundEdgesPanel:
         self.seeds = [FreeCAD.Vector(p) for p in values["seeds"]]
         self.law = list(values["law"])
         self.chain_wires, self.result, self.error = [], None, None
+        self.limits = []            # max_radius of the picked chains (ChainLimit each), shown beside the radius
         self._running = None        # the CancelWatch of the run under way (preview or OK), else None
         self._rerun = False         # a value changed during a preview: preview again once it stopped
         self._close_requested = False  # reject() during a run: close once it stopped
@@ -168,6 +169,11 @@ class RoundEdgesPanel:
         self._preview.clear()
         if not self.seeds:
             self.form.show_status("Click near a sharp edge of the mesh to select it.")
+            return
+        self._show_limit()
+        past = self.radius_past_limit()
+        if past:  # refused here, with the reason next to the field
+            self._show_error(past)
             return
         watch = None
         try:
@@ -343,6 +349,7 @@ class RoundEdgesPanel:
         for box in (f.radius, f.tolerance, f.reach):
             box.valueChanged.connect(lambda *_: self.schedule_preview())
         f.feature_angle.valueChanged.connect(lambda *_: self._seeds_changed())
+        f.reach.valueChanged.connect(lambda *_: self._measure_limits())
         f.law_table.itemChanged.connect(lambda *_: self._law_edited())
         f.live_preview.toggled.connect(lambda on: self.schedule_preview() if on else self._preview.clear())
         f.remove_seed_button.clicked.connect(lambda: self.remove_seeds(f.selected_seed_rows()))
@@ -360,10 +367,43 @@ class RoundEdgesPanel:
                                                         self.feature_angle())
                 except RoundingError as exc:
                     self._show_error(str(exc))
+        self._measure_limits()
         self._refresh_marks()
         self.schedule_preview()
         if not self.seeds:
             self.update_preview()  # shows the hint and clears an old preview at once
+
+    def _measure_limits(self):
+        """The largest radius of each picked chain (max_radius; a fraction of a second), shown beside the
+        radius field."""
+        self.limits = []
+        if self.seeds:
+            try:
+                self.limits = radius_limits.max_radius_arrays(self.vertices, self.triangles, self.seeds,
+                                                              self.feature_angle(), self.form.reach.value())
+            except RoundingError:
+                pass  # the trace's own error is shown already
+        self._show_limit()
+
+    def radius_past_limit(self):
+        """'' or the sentence saying the constant radius is past the largest that fits (and why)."""
+        if self.law or not self.limits:
+            return ""
+        radius = quantity_value(self.form.radius)
+        tightest = min(self.limits, key=lambda lim: lim.radius)
+        if radius <= tightest.radius:
+            return ""
+        return f"r = {radius:g} mm is too large: the largest that fits is {tightest.radius:.4g} mm ({tightest.reason})"
+
+    def _show_limit(self):
+        past = self.radius_past_limit()
+        if past:
+            self.form.show_limit(past, error=True)
+        elif self.limits:
+            tightest = min(self.limits, key=lambda lim: lim.radius)
+            self.form.show_limit(f"{tightest.radius:.4g} mm ({radius_limits.WHY_TEXT.get(tightest.why, tightest.why)})")
+        else:
+            self.form.show_limit("")
 
     def _law_edited(self):
         try:

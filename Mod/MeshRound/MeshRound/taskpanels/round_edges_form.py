@@ -74,6 +74,10 @@ class RoundEdgesForm(QtGui.QWidget):
         self.radius = quantity_box("mm", radius, minimum=0.0,
                                    tooltip="Rolling ball radius (used when the table below is empty)")
         row.addRow("Radius:", self.radius)
+        # the largest radius the picked chains take (max_radius), and why: next to the field it limits
+        self.radius_limit = QtGui.QLabel("")
+        self.radius_limit.setWordWrap(True)
+        row.addRow("Largest:", self.radius_limit)
         layout.addLayout(row)
         law_hint = QtGui.QLabel("Variable radius: with \"a variable-radius point\" checked, click near the "
                                 "chain; each point lands on the chain (empty table: constant radius).")
@@ -102,7 +106,7 @@ class RoundEdgesForm(QtGui.QWidget):
         self.reach.setSingleStep(0.5)
         self.reach.setValue(reach)
         self.reach.setToolTip("Facets within reach x radius of a chain are re-meshed")
-        layout.addRow("Tolerance:", self.tolerance)
+        layout.addRow("Tolerance (0 = automatic, radius / 100):", self.tolerance)
         layout.addRow("Feature angle:", self.feature_angle)
         layout.addRow("Reach:", self.reach)
         return group
@@ -145,6 +149,11 @@ class RoundEdgesForm(QtGui.QWidget):
 
     def selected_law_rows(self):
         return sorted({index.row() for index in self.law_table.selectedIndexes()})
+
+    def show_limit(self, text, error=False):
+        """The radius limit beside the radius field; in red when the radius is past it."""
+        self.radius_limit.setStyleSheet("color: #c00000; font-weight: bold;" if error else "")
+        self.radius_limit.setText(text)
 
     def show_status(self, text, error=False):
         self.status.setStyleSheet("color: #c00000; font-weight: bold;" if error else "")

@@ -1,0 +1,248 @@
+"""Radius sweeps and the optimiser hook (issue 16): many rounded variants of one mesh, one per radius.
+
+    s = MeshRound.sweep(mesh, seeds, [3, 4, 5, 6], out_dir="variants")   # files + table.csv + table.json
+    s.rows                 # one dict per variant: radii, file, status, facets_added, max_deviation, ...
+    best = MeshRound.optimise_radius(mesh, seeds, objective)             # objective(path) -> float
+
+Variants are made in parallel processes (forked: the mesh's arrays are shared, not pickled; jobs=None
+means one per core); a radius above a chain's largest feasible radius (max_radius) is not tried: the
+table says so in one line per such variant (status "above_limit") and the sweep goes on with the rest.
+"""
+import concurrent.futures
+import csv
+import dataclasses
+import json
+import math
+import multiprocessing
+import os
+import tempfile
+import time
+
+import numpy as np
+
+import FreeCAD
+
+from . import api, inputs, meshconv, radius_limits
+from .errors import RoundingError
+
+# What FreeCAD's Mesh module writes, by extension (as the command line).
+WRITE_FORMATS = ("stl", "ast", "obj", "ply", "off", "bms", "smf", "nas", "bdf", "3mf", "iv", "x3d", "x3dz", "xhtml",
+                 "wrl", "vrml", "wrz", "idtf", "mgl", "py", "asy")
+# The report numbers the table's CSV carries (the JSON has the whole report).
+TABLE_COLUMNS = ("facets_removed", "facets_added", "max_deviation", "min_new_angle_deg", "thin_facets", "seconds")
+
+
+@dataclasses.dataclass
+class SweepResult:
+    rows: list          # one dict per variant, in the order of `radii`
+    limits: list        # max_radius's ChainLimit per chain (empty when not measured)
+    out_dir: str        # where the files and the tables are
+    table_csv: str      # path of the CSV table
+    table_json: str     # path of the JSON table
+    jobs: int           # processes used
+    seconds: float      # wall-clock time of the whole sweep
+    stopped: str        # "" or the line that says which radii were above the feasible limit
+
+
+# The work shared with forked workers (set before the pool starts; fork copies it, nothing is pickled).
+_WORK = {}
+
+
+def _variant(task):
+    """Make one variant in a worker: round, write the file; returns the table row."""
+    index, radii = task
+    w = _WORK
+    row = dict(index=index, radii=list(radii), file=None, status="ok", message="")
+    radius = radii[0] if len(set(radii)) == 1 else [(p, r) for p, r in zip(w["control_points"], radii)]
+    try:
+        res = api.round_arrays(w["vertices"], w["triangles"], w["seeds"], radius, **w["options"])
+        name = f"{w['stem']}_{index:03d}_r{'_'.join(f'{r:g}' for r in radii)}.{w['fmt']}"
+        path = os.path.join(w["out_dir"], name)
+        meshconv.arrays_to_mesh(res.vertices, res.triangles).write(path)
+        row.update(file=name, report=res.report)
+        row.update({k: res.report.get(k) for k in TABLE_COLUMNS})
+    except RoundingError as exc:
+        row.update(status=getattr(exc, "code", "invalid_input"), message=str(exc))
+    return row
+
+
+def radius_rows(radii, chains):
+    """Each variant's radii, one per chain: from numbers (every chain the same) or per-chain lists."""
+    rows = []
+    for r in radii:
+        if isinstance(r, (list, tuple, np.ndarray)):
+            row = [float(x) for x in r]
+            if len(row) != chains:
+                raise RoundingError(f"a variant gives {len(row)} radii for {chains} chain(s)")
+        else:
+            row = [float(r)] * chains
+        if not all(math.isfinite(x) and x > 0 for x in row):
+            raise RoundingError(f"radii must be positive numbers, got {row}")
+        rows.append(row)
+    if not rows:
+        raise RoundingError("a sweep needs at least one radius")
+    return rows
+
+
+def sweep(mesh, seeds, radii, out_dir=None, fmt="stl", jobs=None, tolerance=None, feature_angle=30.0, reach=3.0,
+          thickness=None, tool="die", k=None, check_limits=True, stem="variant"):
+    """One rounded variant of `mesh` per entry of `radii`, written to out_dir (None: a new temporary folder),
+    with table.csv and table.json (each variant's report, file name and rule flags).
+
+    radii: numbers (every picked chain gets that radius), or lists of one radius per distinct chain in seed
+    order (each seed then carries its chain's radius).  fmt: a Mesh write format (WRITE_FORMATS).  jobs:
+    processes (None: one per core; 1: in this process).  thickness, tool, k: check_rules' stamping rule
+    (radius >= k.t), flagged in the table.  check_limits: measure max_radius first and skip the variants
+    above it (status "above_limit").  Returns a SweepResult."""
+    started = time.perf_counter()
+    inputs.check_mesh(mesh)
+    if fmt not in WRITE_FORMATS:
+        raise RoundingError(f"unknown mesh format {fmt!r}: one of {', '.join(WRITE_FORMATS)}")
+    seed_points = inputs.seed_array(seeds)
+    vertices, triangles = meshconv.mesh_to_arrays(mesh)
+    limits = radius_limits.max_radius_arrays(vertices, triangles, seed_points, feature_angle, reach) if check_limits else []
+    chains = len(limits) if limits else len(seed_points)
+    rows = radius_rows(radii, chains)
+    if len(set(tuple(r) for r in rows)) < len(rows):
+        raise RoundingError("a sweep's variants must differ: a radius is repeated")
+    if any(len(set(r)) > 1 for r in rows) and chains != len(seed_points):
+        raise RoundingError("per-chain radii need exactly one seed per chain")
+    out_dir = out_dir or tempfile.mkdtemp(prefix="meshround_sweep_")
+    os.makedirs(out_dir, exist_ok=True)
+    options = dict(tolerance=tolerance, feature_angle=feature_angle, reach=reach)
+    todo, table, skipped = [], [None] * len(rows), []
+    for i, row in enumerate(rows):
+        over = [c for c, r in enumerate(row) if limits and r > limits[c].radius]
+        if over:
+            c = over[0]
+            table[i] = dict(index=i, radii=row, file=None, status="above_limit",
+                            message=f"chain {c}: r = {row[c]:g} mm is above its largest feasible radius "
+                                    f"{limits[c].radius:.6g} mm: {limits[c].reason}")
+            skipped.append(row[c])
+        else:
+            todo.append((i, row))
+    _WORK.clear()
+    _WORK.update(vertices=vertices, triangles=triangles, seeds=seed_points, control_points=[tuple(p) for p in seed_points],
+                 options=options, out_dir=out_dir, fmt=fmt, stem=stem)
+    jobs = _jobs(jobs, len(todo))
+    if jobs == 1:
+        done = [_variant(t) for t in todo]
+    else:
+        with concurrent.futures.ProcessPoolExecutor(max_workers=jobs, mp_context=multiprocessing.get_context("fork")) as pool:
+            done = list(pool.map(_variant, todo))
+    for row in done:
+        table[row["index"]] = row
+    if limits:
+        for row in table:
+            row["rules"] = radius_limits.check_rules(limits, row["radii"], thickness, tool, k)
+    stopped = ""
+    if skipped:
+        smallest = min(limit.radius for limit in limits)
+        stopped = (f"{len(skipped)} of {len(rows)} variant(s) not made: r = {', '.join(f'{r:g}' for r in skipped)} mm above "
+                   f"the feasible limit ({smallest:.6g} mm for the tightest chain)")
+    result = SweepResult(rows=table, limits=limits, out_dir=out_dir, table_csv=os.path.join(out_dir, "table.csv"),
+                         table_json=os.path.join(out_dir, "table.json"), jobs=jobs,
+                         seconds=time.perf_counter() - started, stopped=stopped)
+    _write_tables(result)
+    return result
+
+
+def _jobs(jobs, tasks):
+    if jobs is None:
+        jobs = os.cpu_count() or 1
+    if isinstance(jobs, bool) or not isinstance(jobs, int) or jobs < 1:
+        raise RoundingError(f"jobs must be a positive whole number or None, got {jobs!r}")
+    if getattr(FreeCAD, "GuiUp", False):
+        return 1  # no fork under FreeCAD's GUI (its Qt state must not be copied into workers)
+    return max(1, min(jobs, tasks))
+
+
+def _write_tables(result):
+    chains = max(len(row["radii"]) for row in result.rows)
+    with open(result.table_csv, "w", newline="", encoding="utf-8") as stream:
+        out = csv.writer(stream)
+        out.writerow(["variant"] + [f"radius_{c}" for c in range(chains)] + ["file", "status"] + list(TABLE_COLUMNS) +
+                     ["rule_flags", "message"])
+        for row in result.rows:
+            flags = sorted({f for rule in row.get("rules", []) for f in rule["flags"]})
+            out.writerow([row["index"]] + row["radii"] + [row["file"] or "", row["status"]] +
+                         [row.get(c, "") if row.get(c) is not None else "" for c in TABLE_COLUMNS] +
+                         [" ".join(flags), row["message"]])
+    with open(result.table_json, "w", encoding="utf-8") as stream:
+        json.dump(dict(rows=result.rows, limits=[lim.as_dict() for lim in result.limits], jobs=result.jobs,
+                       seconds=result.seconds, stopped=result.stopped), stream, indent=1, default=_plain)
+        stream.write("\n")
+
+
+def _plain(value):
+    if isinstance(value, FreeCAD.Vector):
+        return list(value)
+    if isinstance(value, np.generic):
+        return value.item()
+    raise TypeError(f"not JSON: {type(value).__name__}")
+
+
+@dataclasses.dataclass
+class OptimiseResult:
+    radius: float        # the radius the minimiser settled on
+    value: float         # the objective there
+    path: str            # that variant's file
+    evaluations: list    # (radius, value, path) for every variant made, in order
+    bounds: tuple        # the radius range searched
+    scipy_result: object  # scipy.optimize.OptimizeResult
+
+
+def optimise_radius(mesh, seeds, objective, bounds=None, out_dir=None, fmt="stl", xatol=None, maxiter=25,
+                    tolerance=None, feature_angle=30.0, reach=3.0):
+    """Minimise objective(path) over one radius for every picked chain: the place where a stamping
+    simulation plugs in.  Each trial radius is rounded (round_edges), written to out_dir (None: a new
+    temporary folder) as `opt_NNN_r<radius>.<fmt>`, and objective is called with that file's path; it
+    returns a number (smaller is better).  A radius the engine refuses scores +inf.
+
+    bounds: (low, high) in mm; None: (the largest feasible radius / 100, the largest feasible radius)
+    (max_radius, the tightest chain).  xatol: the radius tolerance (None: 1e-3 of the range).  The search
+    is scipy.optimize.minimize_scalar(method="bounded") (Brent's method on the interval, Debian's
+    python3-scipy).  Returns an OptimiseResult."""
+    from scipy.optimize import minimize_scalar
+    if not callable(objective):
+        raise RoundingError("objective must be a function of a file path returning a number")
+    inputs.check_mesh(mesh)
+    if bounds is None:
+        largest = min(limit.radius for limit in radius_limits.max_radius(mesh, seeds, feature_angle, reach))
+        bounds = (largest / 100, largest)
+    low, high = (float(b) for b in bounds)
+    if not (0 < low < high):
+        raise RoundingError(f"bounds must be 0 < low < high, got {bounds!r}")
+    out_dir = out_dir or tempfile.mkdtemp(prefix="meshround_optimise_")
+    os.makedirs(out_dir, exist_ok=True)
+    evaluations = []
+
+    def score(radius):
+        path = os.path.join(out_dir, f"opt_{len(evaluations):03d}_r{radius:.6g}.{fmt}")
+        try:
+            res = api.round_edges(mesh, seeds, float(radius), tolerance=tolerance, feature_angle=feature_angle, reach=reach)
+        except RoundingError:
+            evaluations.append((float(radius), math.inf, None))
+            return math.inf
+        res.mesh.write(path)
+        value = float(objective(path))
+        evaluations.append((float(radius), value, path))
+        return value
+
+    found = minimize_scalar(score, bounds=(low, high), method="bounded",
+                            options=dict(xatol=xatol or 1e-3 * (high - low), maxiter=maxiter))
+    best = min((e for e in evaluations if e[2]), key=lambda e: e[1], default=(float(found.x), math.inf, None))
+    return OptimiseResult(radius=best[0], value=best[1], path=best[2], evaluations=evaluations, bounds=(low, high),
+                          scipy_result=found)
+
+
+def sweep_features(base, seeds, radii, tolerance=0, feature_angle=30, reach=3, doc=None):
+    """In FreeCAD: one parametric Rounding of mesh feature `base` per radius (named Rounding_r<radius>),
+    each recomputing on its own like any Rounding; no recompute here.  Returns the features."""
+    from .objects.rounding import make_rounding
+    features = []
+    for r in radii:
+        name = f"Rounding_r{float(r):g}".replace(".", "_")
+        features.append(make_rounding(base, seeds, float(r), tolerance=tolerance, feature_angle=feature_angle,
+                                      reach=reach, name=name, doc=doc))
+    return features

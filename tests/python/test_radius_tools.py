@@ -1,0 +1,225 @@
+"""Radius tools (issue 16): max_radius against closed forms and against the engine itself, sweeps, the k.t
+rule, the optimiser hook.
+
+Closed forms (the ball of a 2-face wedge of opening angle a touches each face r / tan(a/2) from the edge):
+box 100 x 60 x 40, its top edge at y = 60: the 40 mm side face -> 40; draft shoulder (cases.py, wall drafted
+10 deg, 22 deep): wall slant 22 / cos 10 at 0.839 r -> 22 / cos(10) x tan(50) = 26.623; a channel 12 deep:
+its shoulder -> 12; a channel floor 10 wide -> 10; the S chain's R20 bend (plate 40 thick, so the bend and
+not the wall limits) -> 20; an open sheet (top and side faces only, 40 high) -> 40 at the mesh boundary.
+Each answer must be within 0.5%, and the engine must round 0.98x of it to a sound mesh and refuse 1.02x
+with radius_too_large.
+"""
+import csv
+import json
+import math
+import os
+import subprocess
+import sys
+
+import pytest
+
+import cases
+import Mesh
+import MeshPart
+import Part
+import soundness
+
+import MeshRound
+from MeshRound import meshconv
+
+V = cases.V
+HERE = os.path.dirname(os.path.abspath(__file__))
+MOD = os.path.join(os.path.dirname(os.path.dirname(HERE)), "Mod", "MeshRound")
+
+
+def channel(width, depth):
+    """A 100 x 60 x 30 block with a channel along x, `width` wide (from y = 15) and `depth` deep."""
+    return Part.makeBox(100, 60, 30).cut(Part.makeBox(100, width, depth, V(0, 15, 30 - depth))).removeSplitter()
+
+
+def s_plate(height):
+    s_wire = cases.s_outline()
+    rest = Part.makePolygon([V(120, 10, 0), V(120, -20, 0), V(0, -20, 0), V(0, 60, 0)])
+    return Part.Face(Part.Wire(Part.__sortEdges__(s_wire.Edges + rest.Edges))).extrude(V(0, 0, height))
+
+
+def open_sheet():
+    """The top and back faces of a 100 x 60 x 40 box only: the back face ends at the mesh boundary."""
+    box = Part.makeBox(100, 60, 40)
+    return Part.makeShell([f for f in box.Faces if abs(f.CenterOfMass.z - 40) < 1e-9 or abs(f.CenterOfMass.y - 60) < 1e-9])
+
+
+DRAFT_LIMIT = 22 / math.cos(math.radians(cases.DRAFT_DEG)) * math.tan(math.radians((90 + cases.DRAFT_DEG) / 2))
+# (name, solid, seed, true limit, why, a check of where)
+CLOSED_FORMS = [
+    ("box top edge", lambda: Part.makeBox(100, 60, 40), V(50, 60, 40), 40.0, "opposite_wall", lambda w: abs(w.z) < 1e-3 and abs(w.y - 60) < 1e-3),
+    ("drafted shoulder", lambda: cases.draft_shoulder()[0], V(30, 25, 30), DRAFT_LIMIT, "face_end", lambda w: abs(w.z - 8) < 1e-3),
+    ("channel shoulder, 12 deep", lambda: channel(30, 12), V(50, 15, 30), 12.0, "face_end", lambda w: abs(w.z - 18) < 1e-3 and abs(w.y - 15) < 1e-3),
+    ("channel floor, 10 wide", lambda: channel(10, 12), V(50, 15, 18), 10.0, "opposite_wall", lambda w: abs(w.y - 25) < 1e-3 and abs(w.z - 18) < 1e-3),
+    ("S chain's R20 bend", lambda: s_plate(40), V(10, 60, 40), 20.0, "curvature", lambda w: (w - V(30, 40, 40)).Length < 0.2),
+    ("open sheet", open_sheet, V(50, 60, 40), 40.0, "boundary", lambda w: abs(w.z) < 1e-3),
+]
+
+
+def test_the_draft_limit_is_the_wedge_formula():
+    """The 100 degree wedge: contacts 0.839 r from the edge, the wall 22.34 mm long -> 26.623 mm."""
+    assert DRAFT_LIMIT == pytest.approx(22.3395 * math.tan(math.radians(50)), rel=1e-4)
+
+
+@pytest.mark.parametrize("name, solid, seed, limit, why, where", CLOSED_FORMS, ids=[c[0] for c in CLOSED_FORMS])
+def test_max_radius_matches_the_closed_form_and_the_engine(name, solid, seed, limit, why, where):
+    mesh = MeshPart.meshFromShape(Shape=solid(), MaxLength=2.0)
+    V0, F0 = meshconv.mesh_to_arrays(mesh)
+    (found,) = MeshRound.max_radius(mesh, [seed])
+    assert abs(found.radius - limit) <= 0.005 * limit, (found.radius, limit)
+    assert found.radius < found.radius_refused <= found.radius * 1.001
+    assert found.why == why, found.reason
+    assert where(found.where), found.where
+    if why == "curvature":
+        assert found.curvature_radius == pytest.approx(20.0, rel=2e-3)  # from the chain point, on a chord
+    res = MeshRound.round_edges(mesh, [seed], 0.98 * found.radius)
+    assert soundness.problems(V0, F0, res.vertices, res.triangles) == []
+    with pytest.raises(MeshRound.RoundingError) as err:
+        MeshRound.round_edges(mesh, [seed], 1.02 * found.radius)
+    assert err.value.code == "radius_too_large"
+    assert meshconv.mesh_to_arrays(mesh)[1].tolist() == F0.tolist()  # the input untouched
+
+
+def test_neighbouring_chains_share_the_face_between_them():
+    """A plate 20 wide with both top edges picked: each round may take half the top face -> 10 (alone: 20);
+    round_edges, rounding one after the other, agrees: 0.98x sound, 1.02x refused."""
+    mesh = MeshPart.meshFromShape(Shape=Part.makeBox(100, 20, 40), MaxLength=2.0)
+    V0, F0 = meshconv.mesh_to_arrays(mesh)
+    seeds = [V(50, 0, 40), V(50, 20, 40)]
+    alone = MeshRound.max_radius(mesh, seeds[:1])[0]
+    assert alone.radius == pytest.approx(20.0, rel=5e-3) and alone.why == "opposite_wall"
+    both = MeshRound.max_radius(mesh, seeds)
+    for found in both:
+        assert found.radius == pytest.approx(10.0, rel=5e-3) and found.why == "neighbouring_chain"
+        assert abs(found.where.y - 10) < 1e-2 and abs(found.where.z - 40) < 1e-3
+    res = MeshRound.round_edges(mesh, seeds, 0.98 * both[0].radius)
+    assert soundness.problems(V0, F0, res.vertices, res.triangles) == []
+    with pytest.raises(MeshRound.RoundingError) as err:
+        MeshRound.round_edges(mesh, seeds, 1.02 * both[0].radius)
+    assert err.value.code == "radius_too_large"
+
+
+def test_bad_input_is_refused_with_its_code():
+    mesh = MeshPart.meshFromShape(Shape=Part.makeBox(100, 60, 40), MaxLength=8.0)
+    with pytest.raises(MeshRound.RoundingError) as err:
+        MeshRound.max_radius(mesh, [V(50, 30, 20)])  # the middle of the box: no sharp edge near
+    assert err.value.code == "no_sharp_edge"
+    with pytest.raises(MeshRound.RoundingError) as err:
+        MeshRound.max_radius(mesh, [V(50, 60, 40)], reach=0.5)
+    assert err.value.code == "invalid_input"
+
+
+def test_rules_flag_below_k_t_and_above_the_limit():
+    """The shoulder and the floor edge of one 12 mm channel wall: picked together they share the wall,
+    6 mm each (alone 12)."""
+    mesh = MeshPart.meshFromShape(Shape=channel(30, 12), MaxLength=4.0)
+    assert round(MeshRound.max_radius(mesh, [V(50, 15, 30)])[0].radius, 1) == 12.0
+    limits = MeshRound.max_radius(mesh, [V(50, 15, 30), V(50, 15, 18)])
+    assert [round(lim.radius, 1) for lim in limits] == [6.0, 6.0]
+    assert [lim.why for lim in limits] == ["neighbouring_chain"] * 2
+    rows = MeshRound.check_rules(limits, [3.0, 7.0], thickness=1.0, tool=["die", "punch"])
+    assert rows[0]["flags"] == ["below_k_t"] and rows[0]["min_radius"] == 5.0   # die: 5 t
+    assert rows[1]["flags"] == ["above_limit"] and rows[1]["min_radius"] == 4.0  # punch: 4 t
+    assert "6 mm" in rows[1]["message"] or "5.99" in rows[1]["message"]
+    assert MeshRound.check_rules(limits, 5.5, thickness=1.0)[0]["flags"] == []
+    assert MeshRound.check_rules(limits, 5.5, thickness=1.0, k={"die": 7})[0]["flags"] == ["below_k_t"]
+    assert MeshRound.check_rules(None, 5.5)[0]["flags"] == []  # no limits, no thickness: nothing to flag
+
+
+def box_edge_mesh():
+    return MeshPart.meshFromShape(Shape=Part.makeBox(100, 60, 40), MaxLength=4.0), [V(50, 60, 40)]
+
+
+def test_sweep_makes_one_variant_per_radius_and_stops_at_the_limit(tmp_path):
+    mesh, seeds = box_edge_mesh()
+    radii = [4.0, 12.0, 39.0, 41.0]
+    result = MeshRound.sweep(mesh, seeds, radii, out_dir=str(tmp_path), fmt="obj", jobs=2, thickness=1.0)
+    assert result.jobs == 2
+    assert [row["status"] for row in result.rows] == ["ok", "ok", "ok", "above_limit"]
+    assert "41" in result.stopped and "39.99" in result.stopped
+    for row, r in zip(result.rows[:3], radii):
+        variant = MeshRound.round_edges(mesh, seeds, r)  # the same rounding made here
+        written = Mesh.Mesh(str(tmp_path / row["file"]))
+        assert written.CountFacets == variant.mesh.CountFacets
+        assert row["facets_added"] == variant.report["facets_added"]
+        # the round removes (1 - pi/4) r^2 of the section along the 100 mm edge, and its chords (within the
+        # tolerance r / 100 of the arc) at most the band between the arc and its tolerance
+        exact = 100 * 60 * 40 - (1 - math.pi / 4) * r * r * 100
+        assert exact - (r / 100) * (math.pi / 2 * r) * 100 <= written.Volume <= exact + 1e-3 * exact
+    assert result.rows[0]["rules"][0]["flags"] == ["below_k_t"]  # 4 < 5 t
+    with open(result.table_csv, newline="") as stream:
+        table = list(csv.DictReader(stream))
+    assert [t["status"] for t in table] == ["ok", "ok", "ok", "above_limit"]
+    assert table[0]["rule_flags"] == "below_k_t" and table[1]["rule_flags"] == ""
+    data = json.load(open(result.table_json))
+    assert data["rows"][2]["report"]["facets_added"] == result.rows[2]["facets_added"]
+    assert data["limits"][0]["why"] == "opposite_wall"
+
+
+def test_sweep_takes_per_chain_radii(tmp_path):
+    mesh = MeshPart.meshFromShape(Shape=channel(30, 12), MaxLength=4.0)
+    seeds = [V(50, 15, 30), V(50, 45, 18)]  # a shoulder and the far floor edge
+    result = MeshRound.sweep(mesh, seeds, [[3.0, 5.0], [6.0, 2.0]], out_dir=str(tmp_path), jobs=1)
+    assert [row["status"] for row in result.rows] == ["ok", "ok"]
+    both = MeshRound.round_edges(mesh, seeds, [(seeds[0], 3.0), (seeds[1], 5.0)])
+    assert result.rows[0]["facets_added"] == both.report["facets_added"]
+
+
+def test_optimiser_finds_a_closed_form_minimum(tmp_path):
+    """Objective from the variant's file: its volume against the volume of the r = 12 round (a closed form)."""
+    mesh, seeds = box_edge_mesh()
+    import Mesh
+    target = 100 * 60 * 40 - (1 - math.pi / 4) * 12.0 ** 2 * 100
+
+    def objective(path):
+        return (Mesh.Mesh(path).Volume - target) ** 2
+
+    # a fine chordal tolerance: the chords' own volume (within 0.01 mm of the arc) moves the minimum by < 0.01 mm
+    best = MeshRound.optimise_radius(mesh, seeds, objective, out_dir=str(tmp_path), xatol=0.05, tolerance=0.01)
+    assert best.bounds[1] == pytest.approx(40.0, rel=1e-3)  # the default: up to max_radius
+    assert best.radius == pytest.approx(12.0, abs=0.06)
+    assert os.path.isfile(best.path) and len(best.evaluations) <= 25
+
+
+def run_cli(*args):
+    env = dict(os.environ, PYTHONPATH=MOD)
+    return subprocess.run(["/usr/bin/python3", "-m", "MeshRound.cli", *args], capture_output=True, text=True, env=env, timeout=300)
+
+
+def test_command_line_max_radius_and_sweep(tmp_path):
+    mesh, _ = box_edge_mesh()
+    src = str(tmp_path / "box.stl")
+    mesh.write(src)
+    out = run_cli("max-radius", src, "--seed", "50,60,40", "--json", str(tmp_path / "limits.json"))
+    assert out.returncode == 0, out.stderr
+    assert "max radius 39.99" in out.stdout and "opposite_wall" in out.stdout
+    assert json.load(open(tmp_path / "limits.json"))["chains"][0]["radius"] == pytest.approx(40, rel=5e-3)
+    (tmp_path / "radii.csv").write_text("shoulder\n5\n38\n45\n")
+    out = run_cli("sweep", src, str(tmp_path / "variants"), "--seed", "50,60,40", "--radius-csv", str(tmp_path / "radii.csv"))
+    assert out.returncode == 0, out.stderr
+    assert "sweep stopped at the feasible limit" in out.stdout and "2 of 3 variant(s) made" in out.stdout
+    assert len([f for f in os.listdir(tmp_path / "variants") if f.endswith(".stl")]) == 2
+    out = run_cli("sweep", src, str(tmp_path / "v2"), "--seed", "50,60,40", "--radius", "3:10:0.5x")
+    assert out.returncode == 2
+
+
+def test_sweep_features_make_one_parametric_rounding_per_radius():
+    import FreeCAD
+    mesh, seeds = box_edge_mesh()
+    doc = FreeCAD.newDocument("SweepFeatures")
+    try:
+        base = doc.addObject("Mesh::Feature", "Box")
+        base.Mesh = mesh
+        features = MeshRound.sweep_features(base, seeds, [4.0, 8.5])
+        doc.recompute()
+        assert [f.Name for f in features] == ["Rounding_r4", "Rounding_r8_5"]
+        for f, r in zip(features, (4.0, 8.5)):
+            assert f.Radius.Value == r and "Invalid" not in f.State
+            assert f.Mesh.Volume == pytest.approx(100 * 60 * 40 - (1 - math.pi / 4) * r * r * 100, rel=2e-3)
+    finally:
+        FreeCAD.closeDocument(doc.Name)
