@@ -1,6 +1,7 @@
 #include "meshround/sharpen.h"
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <map>
@@ -116,6 +117,11 @@ int split_facets(const MeshTopology& mesh, const RoundStrip& strip, MeshEdit& ed
   return count;
 }
 
+// Around a concave round's rebuilt corner, the end face's vertices within this share of r of the corner
+// are re-meshed too; its outline is then triangulated with inner points while a triangle is under
+// kEndQualityDeg (within kEndMargin + 1 radii of the corner line).
+constexpr double kEndMargin = 0.25, kEndQualityDeg = 20;
+
 // A concave round fills the corner: its end face lies on the corner's side of the arc, away from the ball's
 // centre (a convex round's end face lies on the centre's side). Voted over the end facets along the arc.
 bool concave_at(const MeshTopology& mesh, const RoundStrip& strip, const StripEnd& end, double r) {
@@ -149,11 +155,13 @@ int remesh_end(const MeshTopology& mesh, const RoundStrip& strip, int e, double 
       if (on_face(*g) && patch.insert(*g).second) queue.push_back(*g);
   }
   if (concave_at(mesh, strip, end, r)) {
-    const double eps = 1e-6 * r;
+    // Vertices in the corner, or within kEndMargin * r of it (they would leave slivers along the rebuilt
+    // edge's ends), go with their facets.
+    const double margin = kEndMargin * r;
     auto in_corner = [&](int v) {
       const Vec3 p = mesh.point(v);
-      return strip.side[0] * (strip.normal[0].dot(p) - strip.offset[0]) > eps && strip.side[1] * (strip.normal[1].dot(p) - strip.offset[1]) > eps &&
-             !strip.role.count(v);
+      return strip.side[0] * (strip.normal[0].dot(p) - strip.offset[0]) > -margin && strip.side[1] * (strip.normal[1].dot(p) - strip.offset[1]) > -margin &&
+             strip.across(p).norm() <= (1 + kEndMargin) * r && !strip.role.count(v);
     };
     while (!queue.empty()) {
       const int f = queue.back();
@@ -193,14 +201,53 @@ int remesh_end(const MeshTopology& mesh, const RoundStrip& strip, int e, double 
                         " around the rebuilt corner has a hole or is not one patch; nothing was changed");
   Vec3 normal = Vec3::Zero();  // Newell's normal of the outline
   for (size_t i = 0; i < loop.size(); ++i) normal += edit.point(loop[i]).cross(edit.point(loop[(i + 1) % loop.size()]));
-  if (getenv("SHARPEN_DEBUG")) {
-    fprintf(stderr, "end %d concave %d patch %zu loop:", e, int(concave_at(mesh, strip, end, r)), patch.size());
-    for (int v : loop) fprintf(stderr, " %d(%.3f %.3f %.3f)", v, edit.point(v).x(), edit.point(v).y(), edit.point(v).z());
-    fprintf(stderr, "\n");
-  }
   for (int f : patch) edit.removed.insert(f);
-  triangulate_polygon(edit, loop, normal, edit.added);
+  const Vec3 corner = strip.corner, axis = strip.axis;
+  Refinement fill;
+  fill.quality_deg = kEndQualityDeg;
+  fill.admit = [corner, axis, r](const Vec3& p) { const Vec3 d = p - corner; return (d - axis * axis.dot(d)).norm() <= (1 + kEndMargin) * r; };
+  triangulate_polygon(edit, loop, normal, edit.added, fill);
   return int(patch.size());
+}
+
+// Points on the rebuilt edge much closer than its usual spacing (a split point a hair from the end corner
+// or from a vertex snapped onto the line) make slivers and a stub of an edge that round_edges reads as a
+// turn: a split point closer than kMergeShare of the median spacing to its neighbour along the edge is
+// merged into it (the facets between the two go).
+constexpr double kMergeShare = 0.25;
+
+int merge_close_points(const MeshTopology& mesh, const RoundStrip& strip, MeshEdit& edit, const Fold& fold) {
+  std::vector<std::pair<double, int>> line;  // (s, vertex) of every vertex on the corner line
+  for (const auto& [key, q] : fold.split) (void)key, line.push_back({strip.s_of(edit.point(q)), q});
+  for (const auto& [v, t] : fold.t)
+    if (t == 0.5) line.push_back({strip.s_of(edit.point(v)), v});
+  if (line.size() < 3) return 0;
+  std::sort(line.begin(), line.end());
+  std::vector<double> gaps;
+  for (size_t i = 0; i + 1 < line.size(); ++i) gaps.push_back(line[i + 1].first - line[i].first);
+  std::vector<double> sorted = gaps;
+  std::nth_element(sorted.begin(), sorted.begin() + sorted.size() / 2, sorted.end());
+  const double close = kMergeShare * sorted[sorted.size() / 2];
+  const int n_in = mesh.num_vertices();
+  std::unordered_map<int, int> into;
+  for (size_t i = 0; i < gaps.size(); ++i) {
+    if (gaps[i] >= close) continue;
+    const int a = line[i].second, b = line[i + 1].second;
+    if (into.count(a) || into.count(b)) continue;
+    if (b >= n_in && i + 2 < line.size()) into[b] = a;       // the later one, unless it ends the edge
+    else if (a >= n_in && i > 0) into[a] = b;                // the earlier one, unless it starts the edge
+  }
+  if (into.empty()) return 0;
+  std::vector<std::array<int, 3>> kept;
+  for (auto f : edit.added) {
+    for (int& v : f) {
+      auto it = into.find(v);
+      if (it != into.end()) v = it->second;
+    }
+    if (f[0] != f[1] && f[1] != f[2] && f[2] != f[0]) kept.push_back(f);
+  }
+  edit.added.swap(kept);
+  return int(into.size());
 }
 
 // The corner line as a chain, for the output check's reach (guard.h).
@@ -239,6 +286,7 @@ StripReport sharpen_one(const MeshTopology& mesh, const Vec3& seed, const Sharpe
   rep.facets_split = split_facets(mesh, strip, edit, fold);
   for (int e = 0; e < 2; ++e)
     if (strip.ends[e].face) ++rep.end_faces, rep.end_facets_remeshed += remesh_end(mesh, strip, e, rep.found_radius, o.flat_deg, edit, fold);
+  rep.points_merged = merge_close_points(mesh, strip, edit, fold);
   const SharpChain chain = corner_chain(strip);
   check_result(edit, chain, changed_reach(edit, chain) * 1.001 + 1e-9, fold.setback);
   write_mesh(edit, V_out, F_out);
@@ -260,6 +308,7 @@ void validate(const SharpenOptions& o) {
   if (!(o.axis_tilt_deg > 0 && o.axis_tilt_deg < 90)) bad("axis_tilt_deg must lie in (0, 90)");
   if (!(o.facet_tilt_deg > 0 && o.facet_tilt_deg < 90)) bad("facet_tilt_deg must lie in (0, 90)");
   if (!(o.fit_tolerance > 0 && o.fit_tolerance < 1)) bad("fit_tolerance must lie in (0, 1)");
+  if (!(o.measure_clearance >= 0 && o.measure_clearance < 0.5)) bad("measure_clearance must lie in [0, 0.5)");
   if (!(o.law_step > 0) || !(o.snap >= 0 && o.snap < 0.5) || o.max_new_facets < 1) bad("law_step, snap or max_new_facets out of range");
 }
 

@@ -122,10 +122,21 @@ void side_normals(Facets& fx, const std::vector<int>& beside, const Vec3& n0, co
   for (int side = 0; side < 2; ++side) {
     if (members[side].empty()) not_a_round(std::string("no flat face was found on its ") + (side ? "second" : "first") + " side", where);
     strip.normal[side] = sum[side].normalized();
-    for (int f : members[side])
+    double offset = 0;
+    for (int f : members[side]) {
       if (angle_deg(fx.normal(f), strip.normal[side]) > 2 * o.flat_deg)
         not_a_round("more than one flat face lies along one of its sides (near " + format_point(fx.centroid(f)) + ")", where);
+      offset += strip.normal[side].dot(fx.centroid(f));
+    }
+    strip.offset[side] = offset / double(members[side].size());
   }
+}
+
+// How far off a side plane a vertex may lie and still be on it (float32 coordinates, see on_plane_slack).
+double plane_slack(const MeshTopology& mesh, int f) {
+  double magnitude = 0;
+  for (int k = 0; k < 3; ++k) magnitude = std::max(magnitude, mesh.corner(f, k).cwiseAbs().maxCoeff());
+  return 2 * on_plane_slack(0, magnitude);
 }
 
 }  // namespace
@@ -136,9 +147,13 @@ namespace {
 void flood_strip(const MeshTopology& mesh, Facets& fx, int f0, const SharpenOptions& o, const Vec3& where, RoundStrip& strip,
                  std::vector<std::pair<int, int>>& end_edges) {
   const double tilt = std::sin(o.facet_tilt_deg * kDeg);
-  auto side_of = [&](int g) {  // 0, 1: a side's facet; -1: neither
-    for (int side = 0; side < 2; ++side)
-      if (angle_deg(fx.normal(g), strip.normal[side]) < 2 * o.flat_deg) return side;
+  auto side_of = [&](int g) {  // 0, 1: a side's facet (its normal and its corners on that side's plane); -1: neither
+    for (int side = 0; side < 2; ++side) {
+      if (angle_deg(fx.normal(g), strip.normal[side]) >= 2 * o.flat_deg) continue;
+      bool on = true;
+      for (int k = 0; k < 3; ++k) on &= std::abs(strip.normal[side].dot(mesh.corner(g, k)) - strip.offset[side]) <= plane_slack(mesh, g);
+      if (on) return side;
+    }
     return -1;
   };
   auto on_strip = [&](int g) { return side_of(g) < 0 && std::abs(fx.normal(g).dot(strip.axis)) <= tilt; };
@@ -179,7 +194,7 @@ void flood_strip(const MeshTopology& mesh, Facets& fx, int f0, const SharpenOpti
 void side_planes(const MeshTopology& mesh, const Vec3& where, RoundStrip& strip) {
   Vec3 lo = Vec3::Constant(INFINITY), hi = Vec3::Constant(-INFINITY);
   for (const auto& [v, role] : strip.role) lo = lo.cwiseMin(mesh.point(v)), hi = hi.cwiseMax(mesh.point(v));
-  const double span = (hi - lo).norm(), slack = 1e-6 * span + 1e-6 * std::max(lo.cwiseAbs().maxCoeff(), hi.cwiseAbs().maxCoeff());
+  const double span = (hi - lo).norm(), slack = 2 * on_plane_slack(span, std::max(lo.cwiseAbs().maxCoeff(), hi.cwiseAbs().maxCoeff()));
   for (int side = 0; side < 2; ++side) {
     const StripRole border = side ? StripRole::BorderB : StripRole::BorderA;
     double sum = 0;
@@ -190,7 +205,7 @@ void side_planes(const MeshTopology& mesh, const Vec3& where, RoundStrip& strip)
     strip.border_count[side] = n;
     strip.offset[side] = sum / n;
     for (const auto& [v, role] : strip.role)
-      if (role == border && std::abs(strip.normal[side].dot(mesh.point(v)) - strip.offset[side]) > 10 * slack)
+      if (role == border && std::abs(strip.normal[side].dot(mesh.point(v)) - strip.offset[side]) > slack)
         not_a_round("its border at " + format_point(mesh.point(v)) + " is not straight on a flat side (the side is curved there)", where);
   }
   Eigen::Matrix3d M;
@@ -291,7 +306,16 @@ void measure_law(const MeshTopology& mesh, const RoundStrip& strip, const Sharpe
   std::vector<std::pair<double, double>> sr;  // (s, r) of every measured vertex
   double sum = 0;
   rep.radius_min = INFINITY, rep.radius_max = 0;
+  // Vertices nearer a side than measure_clearance * r measure the radius ill-conditioned (a float32 hair
+  // off the plane moves the tangent ball a lot): left out while others are there.
+  auto clear = [&](int v, double r) {
+    const Vec3 p = mesh.point(v);
+    return std::min(std::abs(strip.normal[0].dot(p) - strip.offset[0]), std::abs(strip.normal[1].dot(p) - strip.offset[1])) >= o.measure_clearance * r;
+  };
+  bool any_clear = false;
+  for (const auto& [v, r] : strip.radius) any_clear |= clear(v, r);
   for (const auto& [v, r] : strip.radius) {
+    if (any_clear && !clear(v, r)) continue;
     sr.push_back({strip.s_of(mesh.point(v)), r});
     sum += r;
     rep.radius_min = std::min(rep.radius_min, r), rep.radius_max = std::max(rep.radius_max, r);

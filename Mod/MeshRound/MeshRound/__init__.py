@@ -4,6 +4,7 @@
     res = MeshRound.round_edges(mesh, seeds, radius)              # console API -> RoundingResult
     obj = MeshRound.make_rounding(base_feature, seeds, radius)    # parametric Mesh feature "Rounding"
     wires = MeshRound.trace_chains(mesh, seeds)                   # the chains seeds select
+    res = MeshRound.change_radius(mesh, seeds, radius)            # an existing round to a new radius (0: sharp)
     MeshRound.quality_note(res.report)                            # why new facets are under 10 deg, if any
     token = MeshRound.CancelToken()                               # round_edges(..., cancel=token); from
     token.cancel()                                                # another thread: stops the run
@@ -26,6 +27,7 @@ _EXPORTS = {
     "RoundingError": "errors",
     "CancelToken": "errors",
     "make_rounding": "objects.rounding",
+    "change_radius": "reround",
 }
 __all__ = list(_EXPORTS)
 

@@ -28,6 +28,8 @@ struct SharpenOptions {
   double facet_tilt_deg = 45.0;   // one facet of a round may tilt this far from perpendicular to the corner line
                                   // (a coarse facet's chord across a cylinder tilts by ~25 degrees)
   double fit_tolerance = 0.01;    // share of r the measured radii may stray from their law (else not_a_round)
+  double measure_clearance = 0.02;  // share of r a vertex must lie off both sides to be measured (nearer, a
+                                    // float32 hair moves the tangent ball by up to a percent)
   double law_step = 1.0;          // the measured law's stations: about law_step * r apart along the strip
   double snap = 1e-3;             // a vertex this close (share of the arc) to the corner line is put on it
   long max_new_facets = 2000000;  // the work budget (as RoundOptions::max_new_facets)
@@ -46,6 +48,7 @@ struct StripReport {
   Vec3 corner[2];                      // the rebuilt sharp edge's end points
   int strip_facets = 0, measured_vertices = 0, border_vertices[2] = {0, 0};
   int end_faces = 0, facets_split = 0, end_facets_remeshed = 0;
+  int points_merged = 0;               // points on the rebuilt edge merged into a too-close neighbour
   std::string recognised;              // how the strip was told from its sides (for the report)
 };
 
