@@ -2,6 +2,7 @@
 
     meshround round IN OUT --seed X,Y,Z [--seed ...] (--radius R | --radius-at X,Y,Z:R ...)
                     [--tolerance T] [--feature-angle A] [--reach K] [--report FILE]
+    meshround reround IN OUT --seed X,Y,Z [--seed ...] --radius R [--tolerance T] [--report FILE]
     meshround demo [--out DIR]
 
 Run as `/usr/bin/python3 -m MeshRound.cli ...` with Mod/MeshRound on sys.path (the `meshround` wrapper
@@ -93,6 +94,8 @@ def build_parser():
                      help="re-mesh facets within K x radius of a chain (default 3)")
     rnd.add_argument("--report", metavar="FILE", help="write the rounding report as JSON")
 
+    add_reround_parser(commands)
+
     demo = commands.add_parser(
         "demo", help="round the S-rail die's shoulders (constant and variable radius) into DIR",
         description="Round both die shoulders of the S-rail die mesh, once with r = 5 mm and once with "
@@ -100,6 +103,23 @@ def build_parser():
                     "features, a JSON report and a before/after PNG into DIR (resources/srail_demo.py).")
     demo.add_argument("--out", metavar="DIR", default="out", help="output folder (default: out)")
     return parser
+
+
+def add_reround_parser(commands):
+    """`meshround reround`: change the radius of existing rounds (reround.py)."""
+    rr = commands.add_parser(
+        "reround", help="change the radius of the existing rounds at the seeds (radius 0: sharpen them)",
+        description="Find the existing round (a strip of facets turning between two flat sides) at each seed, "
+                    "measure its radius, rebuild the sharp edge it replaced and round that edge again with "
+                    "radius R (0: leave it sharp); write OUT. The found radius is printed per strip.")
+    rr.add_argument("input", metavar="IN", help="mesh file to read")
+    rr.add_argument("output", metavar="OUT", help="mesh file to write (format from its extension)")
+    rr.add_argument("--seed", metavar="X,Y,Z", type=point, action="append", required=True,
+                    help="a point on an existing round (repeatable)")
+    rr.add_argument("--radius", metavar="R", type=_finite, required=True, help="the new radius (mm); 0: sharp")
+    rr.add_argument("--tolerance", metavar="T", type=_finite, default=None,
+                    help="chordal tolerance (mm); default: radius / 100")
+    rr.add_argument("--report", metavar="FILE", help="write the report (with found_radius per strip) as JSON")
 
 
 def check_extensions(parser, args):
@@ -152,6 +172,24 @@ def run_round(args):
     note = MeshRound.quality_note(r)
     if note:
         print(f"meshround: {note}", file=sys.stderr)
+
+
+def run_reround(args):
+    Mesh, MeshRound = _import_freecad()
+    mesh = _read_mesh(Mesh, args.input)
+    try:
+        result = MeshRound.change_radius(mesh, args.seed, args.radius, tolerance=args.tolerance)
+    except MeshRound.RoundingError as exc:
+        raise Failure(f"changing the radius failed [{getattr(exc, 'code', 'invalid_input')}]: {exc}") from exc
+    report = dict(result.report, input=args.input, output=args.output)
+    writes = [(args.output, result.mesh.write)]
+    if args.report:
+        writes.append((args.report, lambda path: _dump_json(report, path)))
+    _write_all_or_nothing(writes)
+    r = result.report
+    found = ", ".join(f"{x:.4g}" for x in r["found_radius"])
+    print(f"meshround: {len(r['strips'])} round(s) found (r = {found} mm) -> r = {args.radius:g} mm, "
+          f"{r.get('facets_in')} -> {r.get('facets_out')} facets, {r.get('seconds', 0.0):.2f} s -> {args.output}")
 
 
 def demo_script():
@@ -245,6 +283,11 @@ def main(argv=None):
             check_extensions(parser, args)
             check_options(parser, args)
             run_round(args)
+        elif args.command == "reround":
+            check_extensions(parser, args)
+            if args.radius < 0 or (args.tolerance is not None and args.tolerance <= 0):
+                parser.error("--radius must be >= 0 and --tolerance > 0")
+            run_reround(args)
         else:
             run_demo(args.out)
     except Failure as exc:
