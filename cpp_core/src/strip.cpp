@@ -157,6 +157,7 @@ void flood_strip(const MeshTopology& mesh, Facets& fx, int f0, const SharpenOpti
     return -1;
   };
   auto on_strip = [&](int g) { return side_of(g) < 0 && std::abs(fx.normal(g).dot(strip.axis)) <= tilt; };
+  if (side_of(f0) >= 0) not_a_round("the seed's facet lies on a flat face beside a round, not on the round", where);
   if (!on_strip(f0)) not_a_round("the seed's facet turns like neither side's nor the round's", where);
   strip.facet_set.insert(f0);
   std::deque<int> queue{f0};
