@@ -87,18 +87,30 @@ RoundOptions to_options(double radius, double tolerance, double feature_angle, d
 void set_budget_and_cancel(RoundOptions& opt, long max_new_facets, const py::object& cancel);
 py::dict result_dict(const RoundResult& res);
 
+// A rounding call's arguments, converted and checked (round_edges and change_radius take the same ones).
+struct Call {
+  Points V;
+  Triangles F;
+  std::vector<Vec3> seeds;
+  RoundOptions opt;
+};
+
+Call to_call(const py::array& vertices, const py::array& triangles, const py::array& seeds, double radius, double tolerance,
+             double feature_angle, double reach, const py::object& radius_law, long max_new_facets, const py::object& cancel) {
+  Call c{to_points(vertices, "vertices"), to_triangles(triangles), to_vecs(to_points(seeds, "seeds")),
+         to_options(radius, tolerance, feature_angle, reach, radius_law)};
+  set_budget_and_cancel(c.opt, max_new_facets, cancel);
+  return c;
+}
+
 py::dict round_edges_py(const py::array& vertices, const py::array& triangles, const py::array& seeds, double radius,
                         double tolerance, double feature_angle, double reach, const py::object& radius_law, long max_new_facets,
                         const py::object& cancel) {
-  const Points V = to_points(vertices, "vertices");
-  const Triangles F = to_triangles(triangles);
-  const Points S = to_points(seeds, "seeds");
-  RoundOptions opt = to_options(radius, tolerance, feature_angle, reach, radius_law);
-  set_budget_and_cancel(opt, max_new_facets, cancel);
+  const Call c = to_call(vertices, triangles, seeds, radius, tolerance, feature_angle, reach, radius_law, max_new_facets, cancel);
   RoundResult res;
   {
     py::gil_scoped_release release;
-    res = guarded([&] { return round_edges(V, F, to_vecs(S), opt); });
+    res = guarded([&] { return round_edges(c.V, c.F, c.seeds, c.opt); });
   }
   return result_dict(res);
 }
@@ -193,6 +205,7 @@ py::dict strip_dict(const StripReport& s) {
   d["strip_facets"] = s.strip_facets, d["measured_vertices"] = s.measured_vertices;
   d["border_vertices"] = py::make_tuple(s.border_vertices[0], s.border_vertices[1]);
   d["end_faces"] = s.end_faces, d["facets_split"] = s.facets_split, d["end_facets_remeshed"] = s.end_facets_remeshed;
+  d["points_merged"] = s.points_merged;
   d["recognised"] = s.recognised;
   return d;
 }
@@ -200,17 +213,13 @@ py::dict strip_dict(const StripReport& s) {
 py::dict change_radius_py(const py::array& vertices, const py::array& triangles, const py::array& seeds, double radius, double tolerance,
                           double feature_angle, double reach, const py::object& radius_law, long max_new_facets, const py::object& cancel,
                           double strip_turn, double flat_angle, double fit_tolerance) {
-  const Points V = to_points(vertices, "vertices");
-  const Triangles F = to_triangles(triangles);
-  const Points S = to_points(seeds, "seeds");
-  RoundOptions opt = to_options(radius, tolerance, feature_angle, reach, radius_law);
-  set_budget_and_cancel(opt, max_new_facets, cancel);
+  const Call c = to_call(vertices, triangles, seeds, radius, tolerance, feature_angle, reach, radius_law, max_new_facets, cancel);
   SharpenOptions so;
   so.strip_turn_deg = strip_turn, so.flat_deg = flat_angle, so.fit_tolerance = fit_tolerance;
   ChangeRadiusResult res;
   {
     py::gil_scoped_release release;
-    res = guarded([&] { return change_radius(V, F, to_vecs(S), opt, so); });
+    res = guarded([&] { return change_radius(c.V, c.F, c.seeds, c.opt, so); });
   }
   py::dict out = result_dict(res.round);
   py::list strips;

@@ -159,11 +159,7 @@ def run_round(args):
                                        feature_angle=args.feature_angle, reach=args.reach)
     except MeshRound.RoundingError as exc:
         raise Failure(f"rounding failed [{getattr(exc, 'code', 'invalid_input')}]: {exc}") from exc
-    report = dict(result.report, input=args.input, output=args.output)
-    writes = [(args.output, result.mesh.write)]
-    if args.report:
-        writes.append((args.report, lambda path: _dump_json(report, path)))
-    _write_all_or_nothing(writes)
+    _write_result(args, result)
     r = result.report
     deviation = r.get("max_deviation")
     deviation = f"{deviation:.4f} mm" if isinstance(deviation, (int, float)) else "unknown"
@@ -181,15 +177,20 @@ def run_reround(args):
         result = MeshRound.change_radius(mesh, args.seed, args.radius, tolerance=args.tolerance)
     except MeshRound.RoundingError as exc:
         raise Failure(f"changing the radius failed [{getattr(exc, 'code', 'invalid_input')}]: {exc}") from exc
+    _write_result(args, result)
+    r = result.report
+    found = ", ".join(f"{x:.4g}" for x in r["found_radius"])
+    print(f"meshround: {len(r['strips'])} round(s) found (r = {found} mm) -> r = {args.radius:g} mm, "
+          f"{r.get('facets_in')} -> {r.get('facets_out')} facets, {r.get('seconds', 0.0):.2f} s -> {args.output}")
+
+
+def _write_result(args, result):
+    """OUT, and the report if asked for, all or nothing."""
     report = dict(result.report, input=args.input, output=args.output)
     writes = [(args.output, result.mesh.write)]
     if args.report:
         writes.append((args.report, lambda path: _dump_json(report, path)))
     _write_all_or_nothing(writes)
-    r = result.report
-    found = ", ".join(f"{x:.4g}" for x in r["found_radius"])
-    print(f"meshround: {len(r['strips'])} round(s) found (r = {found} mm) -> r = {args.radius:g} mm, "
-          f"{r.get('facets_in')} -> {r.get('facets_out')} facets, {r.get('seconds', 0.0):.2f} s -> {args.output}")
 
 
 def demo_script():

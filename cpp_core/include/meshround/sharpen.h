@@ -30,7 +30,7 @@ struct SharpenOptions {
   double fit_tolerance = 0.01;    // share of r the measured radii may stray from their law (else not_a_round)
   double measure_clearance = 0.02;  // share of r a vertex must lie off both sides to be measured (nearer, a
                                     // float32 hair moves the tangent ball by up to a percent)
-  double law_step = 1.0;          // the measured law's stations: about law_step * r apart along the strip
+  double law_step = 0.5;          // the measured law's stations: about law_step * r apart along the strip
   double snap = 1e-3;             // a vertex this close (share of the arc) to the corner line is put on it
   long max_new_facets = 2000000;  // the work budget (as RoundOptions::max_new_facets)
 };
