@@ -11,6 +11,7 @@
 
 #include "meshround/max_radius.h"
 #include "meshround/round.h"
+#include "meshround/sharpen.h"
 
 namespace py = pybind11;
 using namespace meshround;
@@ -84,24 +85,49 @@ RoundOptions to_options(double radius, double tolerance, double feature_angle, d
   return opt;
 }
 
+void set_budget_and_cancel(RoundOptions& opt, long max_new_facets, const py::object& cancel);
+py::dict result_dict(const RoundResult& res);
+
+// A rounding call's arguments, converted and checked (round_edges and change_radius take the same ones).
+struct Call {
+  Points V;
+  Triangles F;
+  std::vector<Vec3> seeds;
+  RoundOptions opt;
+};
+
+Call to_call(const py::array& vertices, const py::array& triangles, const py::array& seeds, double radius, double tolerance,
+             double feature_angle, double reach, const py::object& radius_law, long max_new_facets, const py::object& cancel) {
+  Call c{to_points(vertices, "vertices"), to_triangles(triangles), to_vecs(to_points(seeds, "seeds")),
+         to_options(radius, tolerance, feature_angle, reach, radius_law)};
+  set_budget_and_cancel(c.opt, max_new_facets, cancel);
+  return c;
+}
+
 py::dict round_edges_py(const py::array& vertices, const py::array& triangles, const py::array& seeds, double radius,
                         double tolerance, double feature_angle, double reach, const py::object& radius_law, long max_new_facets,
                         const py::object& cancel) {
-  const Points V = to_points(vertices, "vertices");
-  const Triangles F = to_triangles(triangles);
-  const Points S = to_points(seeds, "seeds");
-  RoundOptions opt = to_options(radius, tolerance, feature_angle, reach, radius_law);
+  const Call c = to_call(vertices, triangles, seeds, radius, tolerance, feature_angle, reach, radius_law, max_new_facets, cancel);
+  RoundResult res;
+  {
+    py::gil_scoped_release release;
+    res = guarded([&] { return round_edges(c.V, c.F, c.seeds, c.opt); });
+  }
+  return result_dict(res);
+}
+
+// The work budget (0: the default) and the cancel token (None: none) into the options.
+void set_budget_and_cancel(RoundOptions& opt, long max_new_facets, const py::object& cancel) {
   if (max_new_facets > 0) opt.max_new_facets = max_new_facets;  // 0: the default budget
   if (!cancel.is_none()) {
     if (!py::isinstance<CancelToken>(cancel)) throw RoundingError(ErrorCode::InvalidInput, "cancel must be a CancelToken or None");
     const std::atomic<bool>* flag = &cancel.cast<CancelToken&>().flag;  // the caller's reference outlives the call
     opt.cancelled = [flag] { return flag->load(std::memory_order_relaxed); };
   }
-  RoundResult res;
-  {
-    py::gil_scoped_release release;
-    res = guarded([&] { return round_edges(V, F, to_vecs(S), opt); });
-  }
+}
+
+// A RoundResult as the dict CONTRACT.md describes (round_edges' and change_radius' output).
+py::dict result_dict(const RoundResult& res) {
   py::dict out;
   out["vertices"] = py::array_t<double>(py::cast(res.vertices));
   out["triangles"] = py::cast(res.triangles);
@@ -190,6 +216,41 @@ py::list max_radius_py(const py::array& vertices, const py::array& triangles, co
     d["points"] = polyline(c.chain), d["closed"] = c.closed;
     out.append(d);
   }
+// ------------------------------------------------------------------------------ change_radius (sharpen.h)
+py::dict strip_dict(const StripReport& s) {
+  py::dict d;
+  d["found_radius"] = s.found_radius, d["radius_min"] = s.radius_min, d["radius_max"] = s.radius_max;
+  d["constant"] = s.constant, d["fit_residual"] = s.fit_residual;
+  py::list law;
+  for (size_t i = 0; i < s.law_s.size(); ++i)
+    law.append(py::make_tuple(s.law_points[i].x(), s.law_points[i].y(), s.law_points[i].z(), s.law_r[i]));
+  d["law"] = law;
+  d["opening_deg"] = s.opening_deg, d["convex"] = s.convex;
+  d["corner"] = polyline({s.corner[0], s.corner[1]});
+  d["strip_facets"] = s.strip_facets, d["measured_vertices"] = s.measured_vertices;
+  d["border_vertices"] = py::make_tuple(s.border_vertices[0], s.border_vertices[1]);
+  d["end_faces"] = s.end_faces, d["facets_split"] = s.facets_split, d["end_facets_remeshed"] = s.end_facets_remeshed;
+  d["points_merged"] = s.points_merged;
+  d["recognised"] = s.recognised;
+  return d;
+}
+
+py::dict change_radius_py(const py::array& vertices, const py::array& triangles, const py::array& seeds, double radius, double tolerance,
+                          double feature_angle, double reach, const py::object& radius_law, long max_new_facets, const py::object& cancel,
+                          double strip_turn, double flat_angle, double fit_tolerance) {
+  const Call c = to_call(vertices, triangles, seeds, radius, tolerance, feature_angle, reach, radius_law, max_new_facets, cancel);
+  SharpenOptions so;
+  so.strip_turn_deg = strip_turn, so.flat_deg = flat_angle, so.fit_tolerance = fit_tolerance;
+  ChangeRadiusResult res;
+  {
+    py::gil_scoped_release release;
+    res = guarded([&] { return change_radius(c.V, c.F, c.seeds, c.opt, so); });
+  }
+  py::dict out = result_dict(res.round);
+  py::list strips;
+  for (const StripReport& s : res.strips) strips.append(strip_dict(s));
+  out["strips"] = strips;
+  out["seconds_sharpen"] = res.seconds_sharpen;
   return out;
 }
 
@@ -239,6 +300,11 @@ PYBIND11_MODULE(_meshround_core, m) {
         py::arg("tolerance") = 0.0, py::arg("feature_angle") = 30.0, py::arg("reach") = 3.0,
         py::arg("radius_law") = py::none(), py::arg("max_new_facets") = 0, py::arg("cancel") = py::none(),
         "Round the chains of sharp edges the seeds select. See CONTRACT.md for the arrays and the report.");
+  m.def("change_radius", &change_radius_py, py::arg("vertices"), py::arg("triangles"), py::arg("seeds"), py::arg("radius"),
+        py::arg("tolerance") = 0.0, py::arg("feature_angle") = 30.0, py::arg("reach") = 3.0, py::arg("radius_law") = py::none(),
+        py::arg("max_new_facets") = 0, py::arg("cancel") = py::none(), py::arg("strip_turn") = SharpenOptions{}.strip_turn_deg,
+        py::arg("flat_angle") = SharpenOptions{}.flat_deg, py::arg("fit_tolerance") = SharpenOptions{}.fit_tolerance,
+        "Sharpen the existing rounds the seeds pick, then round them at `radius` (0: sharpen only); round_edges' dict plus 'strips'.");
   m.attr("MIN_REACH") = kMinReach;
   m.def("validate_options", [](double radius, double tolerance, double feature_angle, double reach,
                                const py::object& radius_law) {

@@ -20,6 +20,7 @@ const char* error_code_name(ErrorCode code) {
     case ErrorCode::ResultInvalid: return "result_invalid";
     case ErrorCode::Cancelled: return "cancelled";
     case ErrorCode::WorkLimit: return "work_limit";
+    case ErrorCode::NotARound: return "not_a_round";
   }
   return "invalid_input";
 }

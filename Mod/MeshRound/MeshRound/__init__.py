@@ -4,6 +4,7 @@
     res = MeshRound.round_edges(mesh, seeds, radius)              # console API -> RoundingResult
     obj = MeshRound.make_rounding(base_feature, seeds, radius)    # parametric Mesh feature "Rounding"
     wires = MeshRound.trace_chains(mesh, seeds)                   # the chains seeds select
+    res = MeshRound.change_radius(mesh, seeds, radius)            # an existing round to a new radius (0: sharp)
     MeshRound.quality_note(res.report)                            # why new facets are under 10 deg, if any
     deck = MeshRound.read_deck("die.k")                           # solver deck (LS-DYNA/Nastran/Abaqus) as arrays
     res = MeshRound.round_deck("die.k", "die_r5.k", seeds, 5)     # round a deck, write it back (decks.py)
@@ -38,6 +39,7 @@ _EXPORTS = {
     "sweep": "sweep",
     "optimise_radius": "sweep",
     "sweep_features": "sweep",
+    "change_radius": "reround",
 }
 __all__ = list(_EXPORTS)
 

@@ -139,12 +139,13 @@ def _engine_arguments(seeds, radius, tolerance, feature_angle, reach, max_new_fa
     )
 
 
-def _round(vertices, triangles, arguments):
+def _round(vertices, triangles, arguments, engine="round_edges"):
+    """core.<engine> (round_edges, or change_radius: the same result dict) turned into a RoundingResult."""
     vertices = np.ascontiguousarray(vertices, dtype=np.float64)
     triangles = np.ascontiguousarray(triangles, dtype=np.int64)
     seeds = arguments.pop("seeds")
     radius = arguments.pop("radius")
-    raw = _call_engine("round_edges", vertices, triangles, seeds, radius, **arguments)
+    raw = _call_engine(engine, vertices, triangles, seeds, radius, **arguments)
     check_cancelled(arguments["cancel"])  # asked for after the engine's last poll
     out_vertices, out_triangles = _checked_mesh_arrays(raw["vertices"], raw["triangles"])
     contacts = [side for pair in raw["contacts"] for side in pair]
@@ -157,6 +158,8 @@ def _round(vertices, triangles, arguments):
         contacts=shapes.polyline_wires(contacts, [c for c in closed for _ in (0, 1)]),
         report=_json_ready(raw["report"]),
     )
+    if "strips" in raw:  # change_radius: what was found on each existing round (reround.py)
+        result.report["strips"] = _json_ready(raw["strips"])
     result.report.update(facets_in=len(triangles), facets_out=len(out_triangles))
     return result
 

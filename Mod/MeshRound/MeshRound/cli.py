@@ -4,6 +4,7 @@
                     [--tolerance T] [--feature-angle A] [--reach K] [--report FILE] [--part PID]
     (IN and OUT both solver decks -- .k .key .dyn / .bdf .nas .dat / .inp, one family -- round the deck
     and write it back with its IDs, parts, sets and other cards kept: MeshRound.decks)
+    meshround reround IN OUT --seed X,Y,Z [--seed ...] --radius R [--tolerance T] [--report FILE]
     meshround demo [--out DIR]
     meshround max-radius IN --seed X,Y,Z [...]          (cli_radius.py)
     meshround sweep IN OUTDIR --seed X,Y,Z [...] --radius 3:10:0.5
@@ -105,6 +106,8 @@ def build_parser():
                      help="solver decks: round only this part's shells (LS-DYNA/Nastran PID; Abaqus: the "
                           "ELSET's number in order of appearance); other parts are kept as they are")
 
+    add_reround_parser(commands)
+
     demo = commands.add_parser(
         "demo", help="round the S-rail die's shoulders (constant and variable radius) into DIR",
         description="Round both die shoulders of the S-rail die mesh, once with r = 5 mm and once with "
@@ -114,6 +117,23 @@ def build_parser():
     from . import cli_radius
     cli_radius.add_parsers(commands, point, _finite)
     return parser
+
+
+def add_reround_parser(commands):
+    """`meshround reround`: change the radius of existing rounds (reround.py)."""
+    rr = commands.add_parser(
+        "reround", help="change the radius of the existing rounds at the seeds (radius 0: sharpen them)",
+        description="Find the existing round (a strip of facets turning between two flat sides) at each seed, "
+                    "measure its radius, rebuild the sharp edge it replaced and round that edge again with "
+                    "radius R (0: leave it sharp); write OUT. The found radius is printed per strip.")
+    rr.add_argument("input", metavar="IN", help="mesh file to read")
+    rr.add_argument("output", metavar="OUT", help="mesh file to write (format from its extension)")
+    rr.add_argument("--seed", metavar="X,Y,Z", type=point, action="append", required=True,
+                    help="a point on an existing round (repeatable)")
+    rr.add_argument("--radius", metavar="R", type=_finite, required=True, help="the new radius (mm); 0: sharp")
+    rr.add_argument("--tolerance", metavar="T", type=_finite, default=None,
+                    help="chordal tolerance (mm); default: radius / 100")
+    rr.add_argument("--report", metavar="FILE", help="write the report (with found_radius per strip) as JSON")
 
 
 def check_extensions(parser, args):
@@ -163,11 +183,7 @@ def run_round(args):
                                        feature_angle=args.feature_angle, reach=args.reach)
     except MeshRound.RoundingError as exc:
         raise Failure(f"rounding failed [{getattr(exc, 'code', 'invalid_input')}]: {exc}") from exc
-    report = dict(result.report, input=args.input, output=args.output)
-    writes = [(args.output, result.mesh.write)]
-    if args.report:
-        writes.append((args.report, lambda path: _dump_json(report, path)))
-    _write_all_or_nothing(writes)
+    _write_result(args, result)
     r = result.report
     deviation = r.get("max_deviation")
     deviation = f"{deviation:.4f} mm" if isinstance(deviation, (int, float)) else "unknown"
@@ -206,6 +222,27 @@ def run_radius_tool(args):
         cli_radius.run_max_radius(args, MeshRound, mesh, Failure, _dump_json)
     else:
         cli_radius.run_sweep(args, MeshRound, mesh, Failure)
+def run_reround(args):
+    Mesh, MeshRound = _import_freecad()
+    mesh = _read_mesh(Mesh, args.input)
+    try:
+        result = MeshRound.change_radius(mesh, args.seed, args.radius, tolerance=args.tolerance)
+    except MeshRound.RoundingError as exc:
+        raise Failure(f"changing the radius failed [{getattr(exc, 'code', 'invalid_input')}]: {exc}") from exc
+    _write_result(args, result)
+    r = result.report
+    found = ", ".join(f"{x:.4g}" for x in r["found_radius"])
+    print(f"meshround: {len(r['strips'])} round(s) found (r = {found} mm) -> r = {args.radius:g} mm, "
+          f"{r.get('facets_in')} -> {r.get('facets_out')} facets, {r.get('seconds', 0.0):.2f} s -> {args.output}")
+
+
+def _write_result(args, result):
+    """OUT, and the report if asked for, all or nothing."""
+    report = dict(result.report, input=args.input, output=args.output)
+    writes = [(args.output, result.mesh.write)]
+    if args.report:
+        writes.append((args.report, lambda path: _dump_json(report, path)))
+    _write_all_or_nothing(writes)
 
 
 def demo_script():
@@ -301,6 +338,11 @@ def main(argv=None):
             run_round(args)
         elif args.command in ("max-radius", "sweep"):
             run_radius_tool(args)
+        elif args.command == "reround":
+            check_extensions(parser, args)
+            if args.radius < 0 or (args.tolerance is not None and args.tolerance <= 0):
+                parser.error("--radius must be >= 0 and --tolerance > 0")
+            run_reround(args)
         else:
             run_demo(args.out)
     except Failure as exc:

@@ -51,7 +51,8 @@ def check_cancelled(cancel):
 
 # Every code a RoundingError can carry (the engine's ErrorCode, cpp_core/include/meshround/types.h).
 CODES = ("invalid_input", "no_sharp_edge", "non_manifold_input", "radius_too_large", "radius_too_small",
-         "beyond_reach", "corner_not_blendable", "surface_failed", "result_invalid", "cancelled", "work_limit")
+         "beyond_reach", "corner_not_blendable", "surface_failed", "result_invalid", "cancelled", "work_limit",
+         "not_a_round")
 
 
 def require_core():

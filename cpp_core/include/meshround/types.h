@@ -24,6 +24,7 @@ enum class ErrorCode {
   ResultInvalid,       // result_invalid: the result failed the output check; nothing is returned
   Cancelled,           // cancelled: the caller asked the run to stop
   WorkLimit,           // work_limit: the rounding would make more facets than the work budget allows
+  NotARound,           // not_a_round: the strip a seed picks is not a round between two flat sides (change_radius)
 };
 // The code's name as scripts see it ("radius_too_large").
 const char* error_code_name(ErrorCode code);

@@ -1,0 +1,365 @@
+#include "strip.h"
+
+#include <Eigen/Eigenvalues>
+#include <algorithm>
+#include <cmath>
+#include <deque>
+
+#include "meshround/cancel.h"
+#include "meshround/mesh_edit.h"
+
+namespace meshround {
+namespace {
+
+constexpr double kDeg = M_PI / 180.0;
+
+[[noreturn]] void not_a_round(const std::string& why, const Vec3& where) {
+  throw RoundingError(ErrorCode::NotARound, "the strip picked at " + format_point(where) + " is not a round between two flat sides: " + why);
+}
+
+double angle_deg(const Vec3& a, const Vec3& b) { return std::acos(std::clamp(a.dot(b), -1.0, 1.0)) / kDeg; }
+
+// The facets' normals and smooth neighbours, looked up once per facet.
+class Facets {
+ public:
+  Facets(const MeshTopology& mesh, const SharpenOptions& o) : mesh_(mesh), o_(o) {}
+  const Vec3& normal(int f) {
+    auto it = normal_.find(f);
+    if (it == normal_.end()) it = normal_.emplace(f, mesh_.facet_normal(f)).first;
+    return it->second;
+  }
+  // The neighbour across edge k of f (-1: boundary), refusing a non-manifold or flipped neighbour.
+  int across(int f, int k) {
+    const int a = mesh_.F(f, k), b = mesh_.F(f, (k + 1) % 3);
+    int pair[2];
+    const int count = mesh_.edge_facet_pair(a, b, pair);
+    if (count == 1) return -1;
+    const Vec3 mid = 0.5 * (mesh_.point(a) + mesh_.point(b));
+    if (count > 2) throw RoundingError(ErrorCode::NonManifoldInput, "the edge at " + format_point(mid) + " on the strip is non-manifold");
+    const int g = pair[0] == f ? pair[1] : pair[0];
+    if (mesh_.edge_direction(f, a, b) == mesh_.edge_direction(g, a, b))
+      throw RoundingError(ErrorCode::NonManifoldInput, "the facets at " + format_point(mid) + " are oriented against each other (a flipped facet)");
+    return g;
+  }
+  bool smooth(int f, int g) { return angle_deg(normal(f), normal(g)) < o_.strip_turn_deg; }
+  // Flat: every smooth neighbour coplanar with it.
+  bool flat(int f) {
+    for (int k = 0; k < 3; ++k) {
+      const int g = across(f, k);
+      if (g >= 0 && smooth(f, g) && angle_deg(normal(f), normal(g)) >= o_.flat_deg) return false;
+    }
+    return true;
+  }
+  Vec3 centroid(int f) const { return (mesh_.corner(f, 0) + mesh_.corner(f, 1) + mesh_.corner(f, 2)) / 3; }
+  double area(int f) const { return 0.5 * (mesh_.corner(f, 1) - mesh_.corner(f, 0)).cross(mesh_.corner(f, 2) - mesh_.corner(f, 0)).norm(); }
+
+ private:
+  const MeshTopology& mesh_;
+  const SharpenOptions& o_;
+  std::unordered_map<int, Vec3> normal_;
+};
+
+int nearest_facet(const MeshTopology& mesh, const Vec3& seed) {
+  int best = -1;
+  double best_d = INFINITY;
+  CancelPoll poll(1 << 14);
+  for (int f = 0; f < mesh.num_facets(); ++f) {
+    poll.tick();
+    int region;
+    const double d = (closest_point_on_triangle(seed, mesh.corner(f, 0), mesh.corner(f, 1), mesh.corner(f, 2), &region) - seed).squaredNorm();
+    if (d < best_d) best_d = d, best = f;
+  }
+  return best;
+}
+
+// Step 2: the curved facets flooded from f0, and the flat facets beside them (the sides' candidates).
+void flood_curved(Facets& fx, int f0, long budget, std::vector<int>& curved, std::vector<int>& beside) {
+  std::unordered_set<int> seen{f0};
+  std::deque<int> queue{f0};
+  while (!queue.empty()) {
+    const int f = queue.front();
+    queue.pop_front();
+    curved.push_back(f);
+    if (long(curved.size()) > budget) check_work_budget(double(curved.size()), budget, "strip recognition");
+    for (int k = 0; k < 3; ++k) {
+      const int g = fx.across(f, k);
+      if (g < 0 || !fx.smooth(f, g) || !seen.insert(g).second) continue;
+      if (fx.flat(g)) beside.push_back(g);
+      else queue.push_back(g);
+    }
+  }
+}
+
+// The axis the flood's normals turn about: the direction they are all (nearly) perpendicular to.
+Vec3 turning_axis(Facets& fx, const std::vector<int>& facets, const Vec3& where, double tilt_deg) {
+  Eigen::Matrix3d spread = Eigen::Matrix3d::Zero();
+  double total = 0;
+  for (int f : facets) {
+    const double w = fx.area(f);
+    spread += w * fx.normal(f) * fx.normal(f).transpose();
+    total += w;
+  }
+  Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(spread);
+  const Eigen::Vector3d lam = eig.eigenvalues();  // ascending
+  if (!(total > 0) || lam(0) > std::pow(std::sin(tilt_deg * kDeg), 2) * total)
+    not_a_round("its facets' normals do not turn about one axis (a free-form or doubly curved region)", where);
+  if (lam(1) < 1e-8 * total) not_a_round("its facets' normals do not turn (a flat region)", where);
+  return eig.eigenvectors().col(0).normalized();
+}
+
+// Step 2's end: each side's plane normal from its candidates (one normal per side, else refused).
+void side_normals(Facets& fx, const std::vector<int>& beside, const Vec3& n0, const Vec3& axis, const SharpenOptions& o,
+                  const Vec3& where, RoundStrip& strip) {
+  Vec3 sum[2] = {Vec3::Zero(), Vec3::Zero()};
+  std::vector<int> members[2];
+  const double tilt = std::sin(o.facet_tilt_deg * kDeg);
+  for (int f : beside) {
+    const Vec3& n = fx.normal(f);
+    if (std::abs(n.dot(axis)) > tilt) continue;  // an end face's, not a side's
+    const int side = n0.cross(n).dot(axis) < 0 ? 0 : 1;
+    sum[side] += fx.area(f) * n, members[side].push_back(f);
+  }
+  for (int side = 0; side < 2; ++side) {
+    if (members[side].empty()) not_a_round(std::string("no flat face was found on its ") + (side ? "second" : "first") + " side", where);
+    strip.normal[side] = sum[side].normalized();
+    double offset = 0;
+    for (int f : members[side]) {
+      if (angle_deg(fx.normal(f), strip.normal[side]) > 2 * o.flat_deg)
+        not_a_round("more than one flat face lies along one of its sides (near " + format_point(fx.centroid(f)) + ")", where);
+      offset += strip.normal[side].dot(fx.centroid(f));
+    }
+    strip.offset[side] = offset / double(members[side].size());
+  }
+}
+
+// How far off a side plane a vertex may lie and still be on it (float32 coordinates, see on_plane_slack).
+double plane_slack(const MeshTopology& mesh, int f) {
+  double magnitude = 0;
+  for (int k = 0; k < 3; ++k) magnitude = std::max(magnitude, mesh.corner(f, k).cwiseAbs().maxCoeff());
+  return 2 * on_plane_slack(0, magnitude);
+}
+
+}  // namespace
+
+namespace {
+
+// Step 3: the strip's facets, and the role of each of its vertices from the facets across its boundary.
+void flood_strip(const MeshTopology& mesh, Facets& fx, int f0, const SharpenOptions& o, const Vec3& where, RoundStrip& strip,
+                 std::vector<std::pair<int, int>>& end_edges) {
+  const double tilt = std::sin(o.facet_tilt_deg * kDeg);
+  auto side_of = [&](int g) {  // 0, 1: a side's facet (its normal and its corners on that side's plane); -1: neither
+    for (int side = 0; side < 2; ++side) {
+      if (angle_deg(fx.normal(g), strip.normal[side]) >= 2 * o.flat_deg) continue;
+      bool on = true;
+      for (int k = 0; k < 3; ++k) on &= std::abs(strip.normal[side].dot(mesh.corner(g, k)) - strip.offset[side]) <= plane_slack(mesh, g);
+      if (on) return side;
+    }
+    return -1;
+  };
+  auto on_strip = [&](int g) { return side_of(g) < 0 && std::abs(fx.normal(g).dot(strip.axis)) <= tilt; };
+  if (side_of(f0) >= 0) not_a_round("the seed's facet lies on a flat face beside a round, not on the round", where);
+  if (!on_strip(f0)) not_a_round("the seed's facet turns like neither side's nor the round's", where);
+  strip.facet_set.insert(f0);
+  std::deque<int> queue{f0};
+  while (!queue.empty()) {
+    const int f = queue.front();
+    queue.pop_front();
+    strip.facets.push_back(f);
+    if (long(strip.facets.size()) > o.max_new_facets) check_work_budget(double(strip.facets.size()), o.max_new_facets, "strip recognition");
+    for (int k = 0; k < 3; ++k) {
+      const int a = mesh.F(f, k), b = mesh.F(f, (k + 1) % 3);
+      for (int v : {a, b}) strip.role.emplace(v, StripRole::Inner);
+      const int g = fx.across(f, k);
+      if (g >= 0 && strip.facet_set.count(g)) continue;
+      if (g >= 0 && fx.smooth(f, g) && on_strip(g)) {
+        strip.facet_set.insert(g), queue.push_back(g);
+        continue;
+      }
+      const int side = g >= 0 ? side_of(g) : -1;
+      if (side >= 0 && fx.smooth(f, g)) {
+        for (int v : {a, b}) strip.role[v] = side ? StripRole::BorderB : StripRole::BorderA;
+      } else if (g < 0 || !fx.smooth(f, g)) {
+        end_edges.push_back({f, k});
+      } else {
+        not_a_round("it runs on smoothly, at " + format_point(0.5 * (mesh.point(a) + mesh.point(b))) + " (a facet turned " +
+                    format_number(std::asin(std::min(1.0, std::abs(fx.normal(g).dot(strip.axis)))) / kDeg) + " deg off the corner line's normal plane)" +
+                    ", into a face that is neither of its flat sides (another round, a corner blend or a free-form face)", where);
+      }
+    }
+  }
+  // A border's vertices are the border's even where an end edge also touches them.
+}
+
+// Step 3's end: the side planes through their borders (checked flat there), the corner line, the side of
+// each plane the round lies on, and the direction of the ball's centre from the corner.
+void side_planes(const MeshTopology& mesh, const Vec3& where, RoundStrip& strip) {
+  Vec3 lo = Vec3::Constant(INFINITY), hi = Vec3::Constant(-INFINITY);
+  for (const auto& [v, role] : strip.role) lo = lo.cwiseMin(mesh.point(v)), hi = hi.cwiseMax(mesh.point(v));
+  const double span = (hi - lo).norm(), slack = 2 * on_plane_slack(span, std::max(lo.cwiseAbs().maxCoeff(), hi.cwiseAbs().maxCoeff()));
+  for (int side = 0; side < 2; ++side) {
+    const StripRole border = side ? StripRole::BorderB : StripRole::BorderA;
+    double sum = 0;
+    int n = 0;
+    for (const auto& [v, role] : strip.role)
+      if (role == border) sum += strip.normal[side].dot(mesh.point(v)), ++n;
+    if (n < 2) not_a_round(std::string("its ") + (side ? "second" : "first") + " border has fewer than two vertices", where);
+    strip.border_count[side] = n;
+    strip.offset[side] = sum / n;
+    for (const auto& [v, role] : strip.role)
+      if (role == border && std::abs(strip.normal[side].dot(mesh.point(v)) - strip.offset[side]) > slack)
+        not_a_round("its border at " + format_point(mesh.point(v)) + " is not straight on a flat side (the side is curved there)", where);
+  }
+  Eigen::Matrix3d M;
+  M.row(0) = strip.normal[0].transpose(), M.row(1) = strip.normal[1].transpose(), M.row(2) = strip.axis.transpose();
+  const Eigen::FullPivLU<Eigen::Matrix3d> lu(M);
+  if (std::abs(lu.determinant()) < 1e-6) not_a_round("its two sides are parallel (no sharp edge to rebuild)", where);
+  strip.corner = lu.solve(Eigen::Vector3d(strip.offset[0], strip.offset[1], strip.axis.dot(where)));
+  for (int side = 0; side < 2; ++side) {
+    double sum = 0;
+    for (const auto& [v, role] : strip.role)
+      if (role == StripRole::Inner || role == StripRole::End) sum += strip.normal[side].dot(mesh.point(v)) - strip.offset[side];
+    if (std::abs(sum) <= slack) not_a_round("it has no vertex off its sides (one element across: the radius is not defined)", where);
+    strip.side[side] = sum > 0 ? 1.0 : -1.0;
+  }
+  strip.centre_dir = lu.solve(Eigen::Vector3d(strip.side[0], strip.side[1], 0));
+  strip.s_lo = INFINITY, strip.s_hi = -INFINITY;
+  for (const auto& [v, role] : strip.role) strip.s_lo = std::min(strip.s_lo, strip.s_of(mesh.point(v))), strip.s_hi = std::max(strip.s_hi, strip.s_of(mesh.point(v)));
+}
+
+// The ends: the end faces across the end edges (each one plane), or the mesh boundary.
+void strip_ends(const MeshTopology& mesh, Facets& fx, const std::vector<std::pair<int, int>>& end_edges, const SharpenOptions& o,
+                const Vec3& where, RoundStrip& strip) {
+  const double mid = 0.5 * (strip.s_lo + strip.s_hi);
+  Vec3 sum[2] = {Vec3::Zero(), Vec3::Zero()};
+  for (const auto& [f, k] : end_edges) {
+    const int a = mesh.F(f, k), b = mesh.F(f, (k + 1) % 3);
+    const int end = strip.s_of(0.5 * (mesh.point(a) + mesh.point(b))) < mid ? 0 : 1;
+    for (int v : {a, b})
+      if (strip.role[v] == StripRole::Inner || strip.role[v] == StripRole::End) strip.role[v] = StripRole::End, strip.end_of[v] = end;
+    const int g = fx.across(f, k);
+    if (g < 0) continue;
+    strip.ends[end].face = true;
+    strip.ends[end].facets.push_back(g);
+    sum[end] += fx.area(g) * fx.normal(g);
+  }
+  for (int end = 0; end < 2; ++end) {
+    StripEnd& e = strip.ends[end];
+    if (!e.face) continue;
+    e.normal = sum[end].normalized();
+    for (int g : e.facets)
+      if (angle_deg(fx.normal(g), e.normal) > 2 * o.flat_deg)
+        not_a_round("it ends on a face that is not flat (near " + format_point(fx.centroid(g)) + ")", where);
+    if (std::abs(e.normal.dot(strip.axis)) < 0.2) not_a_round("its end face runs nearly along it (near " + format_point(fx.centroid(e.facets[0])) + ")", where);
+    double off = 0;
+    int n = 0;
+    for (const auto& [v, end_v] : strip.end_of)
+      if (end_v == end) off += e.normal.dot(mesh.point(v)), ++n;
+    e.offset = n ? off / n : e.normal.dot(fx.centroid(e.facets[0]));
+  }
+}
+
+// Step 4: the radius of the ball tangent to both planes whose section circle passes through p.
+bool vertex_radius(const RoundStrip& strip, const Vec3& p, double* r) {
+  const Vec3 P = strip.across(p), m = strip.centre_dir;
+  const double k = m.squaredNorm() - 1, b = P.dot(m), c = P.squaredNorm();
+  if (k <= 1e-12) return false;
+  const double disc = b * b - k * c;
+  if (disc < -1e-9 * b * b) return false;
+  const double root = std::sqrt(std::max(disc, 0.0));
+  for (double x : {(b + root) / k, (b - root) / k})  // the larger first
+    if (x > 0 && (P - x * m).dot(m) <= 1e-9 * x * m.squaredNorm()) return *r = x, true;
+  return false;
+}
+
+}  // namespace
+
+RoundStrip recognise_strip(const MeshTopology& mesh, const Vec3& seed, const SharpenOptions& o) {
+  const int f0 = nearest_facet(mesh, seed);
+  Facets fx(mesh, o);
+  if (fx.flat(f0)) not_a_round("the seed's facet lies on a flat face", seed);
+  std::vector<int> curved, beside;
+  flood_curved(fx, f0, o.max_new_facets, curved, beside);
+  RoundStrip strip;
+  const Vec3 axis0 = turning_axis(fx, curved, seed, o.axis_tilt_deg);
+  side_normals(fx, beside, fx.normal(f0), axis0, o, seed, strip);
+  strip.axis = strip.normal[0].cross(strip.normal[1]);
+  if (strip.axis.norm() < 1e-6) not_a_round("its two sides are parallel (no sharp edge to rebuild)", seed);
+  strip.axis.normalize();
+  std::vector<std::pair<int, int>> end_edges;
+  flood_strip(mesh, fx, f0, o, seed, strip, end_edges);
+  side_planes(mesh, seed, strip);
+  strip_ends(mesh, fx, end_edges, o, seed, strip);
+  for (const auto& [v, role] : strip.role) {
+    if (role != StripRole::Inner && role != StripRole::End) continue;
+    double r;
+    if (!vertex_radius(strip, mesh.point(v), &r))
+      not_a_round("no ball tangent to both sides passes through its vertex at " + format_point(mesh.point(v)), seed);
+    strip.radius[v] = r;
+  }
+  if (strip.radius.empty()) not_a_round("it has no vertex between its borders (one element across: the radius is not defined)", seed);
+  strip.recognised = "curved facets flooded from the seed (" + std::to_string(curved.size()) + "), flanked by two flat sides (" +
+                     format_number(angle_deg(strip.normal[0], strip.normal[1])) + " deg apart); strip = " +
+                     std::to_string(strip.facets.size()) + " facets turning about the corner line between them";
+  return strip;
+}
+
+void measure_law(const MeshTopology& mesh, const RoundStrip& strip, const SharpenOptions& o, StripReport& rep) {
+  std::vector<std::pair<double, double>> sr;  // (s, r) of every measured vertex
+  double sum = 0;
+  rep.radius_min = INFINITY, rep.radius_max = 0;
+  // Vertices nearer a side than measure_clearance * r measure the radius ill-conditioned (a float32 hair
+  // off the plane moves the tangent ball a lot): left out while others are there.
+  auto clear = [&](int v, double r) {
+    const Vec3 p = mesh.point(v);
+    return std::min(std::abs(strip.normal[0].dot(p) - strip.offset[0]), std::abs(strip.normal[1].dot(p) - strip.offset[1])) >= o.measure_clearance * r;
+  };
+  bool any_clear = false;
+  for (const auto& [v, r] : strip.radius) any_clear |= clear(v, r);
+  for (const auto& [v, r] : strip.radius) {
+    if (any_clear && !clear(v, r)) continue;
+    sr.push_back({strip.s_of(mesh.point(v)), r});
+    sum += r;
+    rep.radius_min = std::min(rep.radius_min, r), rep.radius_max = std::max(rep.radius_max, r);
+  }
+  rep.found_radius = sum / double(sr.size());
+  rep.measured_vertices = int(sr.size());
+  const double r = rep.found_radius, tol = o.fit_tolerance * r;
+  rep.constant = rep.radius_max - rep.radius_min <= tol;
+  rep.law_s.clear(), rep.law_r.clear(), rep.law_points.clear();
+  if (rep.constant) {
+    rep.fit_residual = std::max(rep.radius_max - r, r - rep.radius_min);
+    for (double s : {strip.s_lo, strip.s_hi}) rep.law_s.push_back(s), rep.law_r.push_back(r);
+  } else {  // stations every ~law_step * r: the hat-weighted mean radius of the vertices around each
+    const double L = strip.s_hi - strip.s_lo;
+    const int n = std::max(2, int(std::ceil(L / std::max(o.law_step * r, 1e-9))) + 1);
+    const double h = L / (n - 1);
+    std::vector<double> wsum(n, 0), rsum(n, 0);
+    for (const auto& [s, rv] : sr) {
+      const double x = std::clamp((s - strip.s_lo) / h, 0.0, double(n - 1));
+      const int i = std::min(int(x), n - 2);
+      const double w = x - i;
+      wsum[i] += 1 - w, rsum[i] += (1 - w) * rv, wsum[i + 1] += w, rsum[i + 1] += w * rv;
+    }
+    for (int i = 0; i < n; ++i)
+      if (wsum[i] > 1e-6) rep.law_s.push_back(strip.s_lo + i * h), rep.law_r.push_back(rsum[i] / wsum[i]);
+    auto law_at = [&](double s) {
+      const size_t j = std::upper_bound(rep.law_s.begin(), rep.law_s.end(), s) - rep.law_s.begin();
+      if (j == 0) return rep.law_r.front();
+      if (j == rep.law_s.size()) return rep.law_r.back();
+      const double w = (s - rep.law_s[j - 1]) / (rep.law_s[j] - rep.law_s[j - 1]);
+      return (1 - w) * rep.law_r[j - 1] + w * rep.law_r[j];
+    };
+    rep.fit_residual = 0;
+    Vec3 worst = strip.corner;
+    for (const auto& [s, rv] : sr)
+      if (std::abs(rv - law_at(s)) > rep.fit_residual) rep.fit_residual = std::abs(rv - law_at(s)), worst = strip.corner + s * strip.axis;
+    if (rep.fit_residual > tol)
+      throw RoundingError(ErrorCode::NotARound, "the strip along " + format_point(worst) + " is not a round: the radius is not defined there "
+                          "(the balls tangent to both sides through its vertices range over " + format_number(rep.radius_min) + " .. " +
+                          format_number(rep.radius_max) + " mm and stray by " + format_number(rep.fit_residual) + " mm from any law along it, over " +
+                          format_number(100 * o.fit_tolerance) + "% of r)");
+  }
+  for (double s : rep.law_s) rep.law_points.push_back(strip.corner + s * strip.axis);
+}
+
+}  // namespace meshround

@@ -1,0 +1,67 @@
+// Private to the sharpen pass (sharpen.h): the strip of facets a seed picks on an existing round, its two
+// flat sides, its ends, and the radius measured at each of its vertices.
+//
+// How a strip is told from its sides (recognise_strip):
+//  1. the seed's facet must be curved: some neighbour across a smooth edge (turning by less than
+//     strip_turn_deg) differs from it by flat_deg or more (a facet whose smooth neighbours are all
+//     coplanar with it lies on a flat face);
+//  2. the curved facets are flooded from it across smooth edges; the flat facets next to that flood are
+//     the sides' candidates, split in two by which way their normal turns from the seed's about the axis
+//     (the direction the flood's normals are all perpendicular to: smallest eigenvector of their spread);
+//     each side's candidates must share one normal (one plane);
+//  3. the strip is the flood of facets from the seed whose normal is neither side's and is perpendicular
+//     to the corner line (the two sides' normals' cross product) within axis_tilt_deg; its boundary edges
+//     are border A (a side-A facet across), border B, or an end (a facet of an end face, or the mesh
+//     boundary). Anything else across a smooth edge is not a round.
+//  4. the radius at a vertex is that of the ball tangent to both side planes whose circle, in the section
+//     normal to the corner line, passes through the vertex (a quadratic; the root with the vertex between
+//     the two contacts).
+#pragma once
+#include <string>
+#include <unordered_map>
+#include <unordered_set>
+#include <vector>
+
+#include "meshround/mesh.h"
+#include "meshround/sharpen.h"
+
+namespace meshround {
+
+enum class StripRole { Inner = 0, BorderA = 1, BorderB = 2, End = 3 };
+
+struct StripEnd {
+  bool face = false;          // an end face (else the strip ends at the mesh boundary)
+  std::vector<int> facets;    // the end face's facets across the strip's end edges
+  Vec3 normal = Vec3::Zero(); // the end face's plane: normal . x = offset
+  double offset = 0;
+};
+
+struct RoundStrip {
+  std::vector<int> facets;
+  std::unordered_set<int> facet_set;
+  std::unordered_map<int, StripRole> role;  // every vertex of the strip
+  std::unordered_map<int, int> end_of;      // End vertices: which end (0: low s, 1: high s)
+  Vec3 normal[2];                           // side planes (A, B): normal . x = offset
+  double offset[2] = {0, 0};
+  double side[2] = {0, 0};                  // +-1: the side of each plane the round (and its ball) lies on
+  Vec3 axis, corner;                        // the corner line: corner + s axis
+  Vec3 centre_dir;                          // the ball's centre in a section: its corner point + r centre_dir
+  double s_lo = 0, s_hi = 0;                // the strip's extent along the corner line
+  StripEnd ends[2];
+  std::unordered_map<int, double> radius;   // measured radius at each Inner / End vertex
+  int border_count[2] = {0, 0};
+  std::string recognised;
+
+  double s_of(const Vec3& p) const { return axis.dot(p - corner); }
+  // p's component normal to the corner line, relative to it (a point of p's section).
+  Vec3 across(const Vec3& p) const { const Vec3 d = p - corner; return d - axis * axis.dot(d); }
+};
+
+// Throws RoundingError(not_a_round) naming the place and the reason when the seed is not on a round
+// between two flat sides; non_manifold_input for a non-manifold or inconsistently oriented strip.
+RoundStrip recognise_strip(const MeshTopology& mesh, const Vec3& seed, const SharpenOptions& options);
+
+// The measured law (StripReport's radius fields), checked: not_a_round when the radii stray from it.
+void measure_law(const MeshTopology& mesh, const RoundStrip& strip, const SharpenOptions& options, StripReport& report);
+
+}  // namespace meshround
