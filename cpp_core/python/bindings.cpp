@@ -216,6 +216,9 @@ py::list max_radius_py(const py::array& vertices, const py::array& triangles, co
     d["points"] = polyline(c.chain), d["closed"] = c.closed;
     out.append(d);
   }
+  return out;
+}
+
 // ------------------------------------------------------------------------------ change_radius (sharpen.h)
 py::dict strip_dict(const StripReport& s) {
   py::dict d;
