@@ -54,7 +54,10 @@ MeshTopology::MeshTopology(const Points& V_, const Triangles& F_) : V(V_), F(F_)
                             ", which does not exist");
       ++vf_start_[v + 1];
     }
-  for (int v = 0; v < n; ++v) vf_start_[v + 1] += vf_start_[v];
+  for (int v = 0; v < n; ++v) {
+    if (vf_start_[v + 1] == 0) unused_.push_back(v);
+    vf_start_[v + 1] += vf_start_[v];
+  }
   vf_.resize(vf_start_[n]);
   std::vector<int> fill(vf_start_.begin(), vf_start_.end() - 1);
   for (int f = 0; f < m; ++f) {
