@@ -264,14 +264,31 @@ int count_thin_facets(const MeshTopology& mesh, const MeshEdit& edit, double* mi
   return thin;
 }
 
-RoundedChain round_one_chain(const MeshTopology& mesh, const Vec3& seed, const RoundOptions& opt, RoundReport& report,
+// Where a chain is picked again on the mesh its round is made on: the middle of one of its edges, and that
+// edge's ends in this mesh (or -1: the mesh's facets are searched for it).
+struct ChainSeed {
+  Vec3 point;
+  std::array<int, 2> on_edge{-1, -1};
+};
+
+// The ends of the input edge (a, b) in a mesh made from the input (its lineage; empty: the input itself).
+std::array<int, 2> edge_in(const Lineage& lineage, std::array<int, 2> edge) {
+  if (lineage.vertex.empty()) return edge;
+  std::array<int, 2> out{-1, -1};
+  for (size_t j = 0; j < lineage.vertex.size(); ++j)
+    for (int k = 0; k < 2; ++k)
+      if (lineage.vertex[j] == edge[k]) out[k] = int(j);
+  return out;
+}
+
+RoundedChain round_one_chain(const MeshTopology& mesh, const ChainSeed& seed, const RoundOptions& opt, RoundReport& report,
                              MeshDelta* delta, const NetworkPart& net = {}, std::vector<Vec3>* round_points = nullptr,
                              bool is_probe = false, bool split = false);
 
 // The room probe: the chain is rounded again (and thrown away) at wider reaches, narrowest first (a
 // wider band costs more); the first of kWiderReaches that makes no facet under kThinDeg goes into
 // rep.reach_for_room (0: none does).
-void probe_reach_for_room(const MeshTopology& mesh, const Vec3& seed, const RoundOptions& opt, const NetworkPart& net,
+void probe_reach_for_room(const MeshTopology& mesh, const ChainSeed& seed, const RoundOptions& opt, const NetworkPart& net,
                           bool split, ChainReport& rep) {
   auto gives_room = [&](double wider) {
     RoundOptions o = opt;
@@ -294,12 +311,12 @@ void probe_reach_for_room(const MeshTopology& mesh, const Vec3& seed, const Roun
 // `split`: the mesh is the input already split along the chain's end segments (ends.h). `net`: its corners
 // with other chains of the call; `round_points` (if given) gets the round's vertices. `delta`: the result,
 // as an edit of `mesh` (none for a probe).
-RoundedChain round_one_chain(const MeshTopology& mesh, const Vec3& seed, const RoundOptions& opt, RoundReport& report,
+RoundedChain round_one_chain(const MeshTopology& mesh, const ChainSeed& seed, const RoundOptions& opt, RoundReport& report,
                              MeshDelta* delta, const NetworkPart& net, std::vector<Vec3>* round_points,
                              bool is_probe, bool split) {
   PassTimer timer(report);
   const double r_max = opt.max_radius();
-  SharpChain chain = trace_chain(mesh, seed, opt.feature_angle_deg, opt.reach * r_max);
+  SharpChain chain = trace_chain(mesh, seed.point, opt.feature_angle_deg, opt.reach * r_max, seed.on_edge);
   chain.index_segments();
   const RadiusLaw law(opt, chain, opt.reach * r_max);
   const double reach = opt.reach * law.max_radius();
@@ -336,7 +353,8 @@ RoundedChain round_one_chain(const MeshTopology& mesh, const Vec3& seed, const R
       const MeshTopology split_mesh(V_split, F_split);
       timer.done("ends");
       MeshDelta on_split;
-      RoundedChain out = round_one_chain(split_mesh, seed, opt, report, delta ? &on_split : nullptr, net, round_points, is_probe, true);
+      const ChainSeed on_split_mesh{seed.point, edge_in(Lineage{from_split.vertex, from_split.facet}, seed.on_edge)};
+      RoundedChain out = round_one_chain(split_mesh, on_split_mesh, opt, report, delta ? &on_split : nullptr, net, round_points, is_probe, true);
       if (delta) *delta = delta_through(mesh.V, mesh.F, V_split, F_split, from_split, on_split);
       return out;
     }
@@ -521,7 +539,8 @@ RoundResult round_edges(const Points& V, const Triangles& F, const std::vector<V
   RoundResult result;
   // One seed per distinct chain, found on the input; each chain is then rounded on the latest mesh.
   std::vector<SharpChain> chains;
-  std::vector<Vec3> chain_seeds, picked;
+  std::vector<ChainSeed> chain_seeds;
+  std::vector<Vec3> picked;
   const MeshTopology input(V, F);
   std::set<std::vector<int>> seen;
   for (const Vec3& seed : seeds) {
@@ -532,7 +551,8 @@ RoundResult round_edges(const Points& V, const Triangles& F, const std::vector<V
     if (!seen.insert(key).second) continue;
     // The middle of an edge of the chain picks the same chain again, even after other chains are rounded.
     const size_t i = (c.points.size() - 1) / 2;
-    chain_seeds.push_back(0.5 * (c.points[i] + c.points[(i + 1) % c.points.size()]));
+    const size_t j = (i + 1) % c.points.size();
+    chain_seeds.push_back({0.5 * (c.points[i] + c.points[j]), {c.vertices[i], c.vertices[j]}});
     picked.push_back(seed);
     chains.push_back(std::move(c));
   }
@@ -568,7 +588,8 @@ RoundResult round_edges(const Points& V, const Triangles& F, const std::vector<V
       result.chains.push_back(round_one_chain(input, chain_seeds[k], chain_options[k], result.report, &step, net, keep));
     } else {
       const MeshTopology mesh(cur_V, cur_F);
-      result.chains.push_back(round_one_chain(mesh, chain_seeds[k], chain_options[k], result.report, &step, net, keep));
+      const ChainSeed seed{chain_seeds[k].point, edge_in(lineage, chain_seeds[k].on_edge)};
+      result.chains.push_back(round_one_chain(mesh, seed, chain_options[k], result.report, &step, net, keep));
     }
     if (passes == 1) delta = std::move(step);
     else apply_step(step, k == 0);
