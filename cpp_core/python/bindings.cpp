@@ -86,7 +86,7 @@ RoundOptions to_options(double radius, double tolerance, double feature_angle, d
 }
 
 void set_budget_and_cancel(RoundOptions& opt, long max_new_facets, const py::object& cancel);
-py::dict result_dict(const RoundResult& res);
+py::dict result_dict(const RoundResult& res, bool arrays, bool with_delta);
 
 // A rounding call's arguments, converted and checked (round_edges and change_radius take the same ones).
 struct Call {
@@ -104,16 +104,73 @@ Call to_call(const py::array& vertices, const py::array& triangles, const py::ar
   return c;
 }
 
+// ---------------------------------------------------------------------------------------------- mesh deltas
+template <class T>
+py::array_t<T> vector_array(const std::vector<T>& v) {
+  py::array_t<T> a(py::ssize_t(v.size()));
+  std::copy(v.begin(), v.end(), a.mutable_data());
+  return a;
+}
+
+py::array_t<double> point_rows(const std::vector<Vec3>& pts) { return polyline(pts); }
+
+py::array_t<int> facet_rows(const std::vector<std::array<int, 3>>& facets) {
+  py::array_t<int> a({py::ssize_t(facets.size()), py::ssize_t(3)});
+  if (!facets.empty()) std::copy(facets.front().data(), facets.front().data() + 3 * facets.size(), a.mutable_data());
+  return a;
+}
+
+py::dict delta_dict(const MeshDelta& d) {
+  py::dict out;
+  out["input_vertices"] = d.input_vertices, out["input_facets"] = d.input_facets;
+  out["removed"] = vector_array(d.removed), out["freed"] = vector_array(d.freed);
+  out["moved"] = vector_array(d.moved), out["moved_to"] = point_rows(d.moved_to);
+  out["new_points"] = point_rows(d.new_points), out["added"] = facet_rows(d.added);
+  return out;
+}
+
+std::vector<int> int_list(const py::handle& h, const char* what) {
+  auto arr = py::array_t<long long, py::array::c_style | py::array::forcecast>::ensure(h);
+  if (!arr || arr.ndim() != 1) throw RoundingError(ErrorCode::InvalidInput, std::string("delta[") + what + "] must be a 1-d array of ids");
+  return std::vector<int>(arr.data(), arr.data() + arr.size());
+}
+
+MeshDelta delta_from_dict(const py::dict& d) {
+  MeshDelta out;
+  out.input_vertices = d["input_vertices"].cast<int>(), out.input_facets = d["input_facets"].cast<int>();
+  out.removed = int_list(d["removed"], "removed"), out.freed = int_list(d["freed"], "freed"), out.moved = int_list(d["moved"], "moved");
+  out.moved_to = to_vecs(to_points(d["moved_to"], "delta['moved_to']"));
+  out.new_points = to_vecs(to_points(d["new_points"], "delta['new_points']"));
+  const Triangles added = to_triangles(d["added"]);
+  for (Eigen::Index i = 0; i < added.rows(); ++i) out.added.push_back({added(i, 0), added(i, 1), added(i, 2)});
+  if (out.moved.size() != out.moved_to.size()) throw RoundingError(ErrorCode::InvalidInput, "delta['moved'] and delta['moved_to'] differ in length");
+  return out;
+}
+
+py::tuple apply_delta_py(const py::array& vertices, const py::array& triangles, const py::dict& delta) {
+  const Points V = to_points(vertices, "vertices");
+  const Triangles F = to_triangles(triangles);
+  const MeshDelta d = delta_from_dict(delta);
+  Points V_out;
+  Triangles F_out;
+  {
+    py::gil_scoped_release release;
+    apply_delta(V, F, d, V_out, F_out);
+  }
+  return py::make_tuple(py::array_t<double>(py::cast(V_out)), py::cast(F_out));
+}
+
 py::dict round_edges_py(const py::array& vertices, const py::array& triangles, const py::array& seeds, double radius,
                         double tolerance, double feature_angle, double reach, const py::object& radius_law, long max_new_facets,
-                        const py::object& cancel) {
-  const Call c = to_call(vertices, triangles, seeds, radius, tolerance, feature_angle, reach, radius_law, max_new_facets, cancel);
+                        const py::object& cancel, bool arrays) {
+  Call c = to_call(vertices, triangles, seeds, radius, tolerance, feature_angle, reach, radius_law, max_new_facets, cancel);
+  c.opt.write_arrays = arrays;
   RoundResult res;
   {
     py::gil_scoped_release release;
     res = guarded([&] { return round_edges(c.V, c.F, c.seeds, c.opt); });
   }
-  return result_dict(res);
+  return result_dict(res, arrays, true);
 }
 
 // The work budget (0: the default) and the cancel token (None: none) into the options.
@@ -126,11 +183,13 @@ void set_budget_and_cancel(RoundOptions& opt, long max_new_facets, const py::obj
   }
 }
 
-// A RoundResult as the dict CONTRACT.md describes (round_edges' and change_radius' output).
-py::dict result_dict(const RoundResult& res) {
+// A RoundResult as the dict CONTRACT.md describes (round_edges' and change_radius' output); `arrays`: the
+// whole mesh as arrays too, `with_delta`: the delta (an edit of the caller's input; change_radius' is not).
+py::dict result_dict(const RoundResult& res, bool arrays, bool with_delta) {
   py::dict out;
-  out["vertices"] = py::array_t<double>(py::cast(res.vertices));
-  out["triangles"] = py::cast(res.triangles);
+  out["vertices"] = arrays ? py::object(py::array_t<double>(py::cast(res.vertices))) : py::object(py::none());
+  out["triangles"] = arrays ? py::object(py::cast(res.triangles)) : py::object(py::none());
+  out["delta"] = with_delta ? py::object(delta_dict(res.delta)) : py::object(py::none());
   py::list faces, spines, contacts, chains, closed, chain_reports;
   for (const RoundedChain& c : res.chains) {
     faces.append(py::bytes(c.brep).attr("decode")("ascii"));
@@ -249,7 +308,7 @@ py::dict change_radius_py(const py::array& vertices, const py::array& triangles,
     py::gil_scoped_release release;
     res = guarded([&] { return change_radius(c.V, c.F, c.seeds, c.opt, so); });
   }
-  py::dict out = result_dict(res.round);
+  py::dict out = result_dict(res.round, true, false);
   py::list strips;
   for (const StripReport& s : res.strips) strips.append(strip_dict(s));
   out["strips"] = strips;
@@ -301,13 +360,15 @@ PYBIND11_MODULE(_meshround_core, m) {
       });
   m.def("round_edges", &round_edges_py, py::arg("vertices"), py::arg("triangles"), py::arg("seeds"), py::arg("radius"),
         py::arg("tolerance") = 0.0, py::arg("feature_angle") = 30.0, py::arg("reach") = 3.0,
-        py::arg("radius_law") = py::none(), py::arg("max_new_facets") = 0, py::arg("cancel") = py::none(),
+        py::arg("radius_law") = py::none(), py::arg("max_new_facets") = 0, py::arg("cancel") = py::none(), py::arg("arrays") = true,
         "Round the chains of sharp edges the seeds select. See CONTRACT.md for the arrays and the report.");
   m.def("change_radius", &change_radius_py, py::arg("vertices"), py::arg("triangles"), py::arg("seeds"), py::arg("radius"),
         py::arg("tolerance") = 0.0, py::arg("feature_angle") = 30.0, py::arg("reach") = 3.0, py::arg("radius_law") = py::none(),
         py::arg("max_new_facets") = 0, py::arg("cancel") = py::none(), py::arg("strip_turn") = SharpenOptions{}.strip_turn_deg,
         py::arg("flat_angle") = SharpenOptions{}.flat_deg, py::arg("fit_tolerance") = SharpenOptions{}.fit_tolerance,
         "Sharpen the existing rounds the seeds pick, then round them at `radius` (0: sharpen only); round_edges' dict plus 'strips'.");
+  m.def("apply_delta", &apply_delta_py, py::arg("vertices"), py::arg("triangles"), py::arg("delta"),
+        "The rounded mesh (vertices, triangles) from the input arrays and round_edges' res['delta'] (CONTRACT.md).");
   m.attr("MIN_REACH") = kMinReach;
   m.def("validate_options", [](double radius, double tolerance, double feature_angle, double reach,
                                const py::object& radius_law) {

@@ -1,5 +1,5 @@
-// BoxTree: a bounding volume hierarchy over axis-aligned boxes (facets, chain segments), built by
-// OCCT's BVH (BVH_BinnedBuilder, TKMath) and kept private to the engine. Its one query, nearest(), is
+// BoxTree: a bounding volume hierarchy over axis-aligned boxes (facets, chain segments), split at the
+// median on the longest axis (box_tree.cpp) and kept private to the engine. Its one query, nearest(), is
 // an exact branch-and-bound closest-primitive search: it visits only nodes whose box is nearer than the
 // best primitive found so far, so its cost follows the primitives near the query point, never the
 // empty space between them (a uniform grid walks every empty cell of the box it searches).
@@ -25,12 +25,13 @@ class BoxTree {
   template <class Exact>
   int nearest(const Vec3& p, Exact&& exact, double* best_d2 = nullptr, int* visited = nullptr) const;
 
- private:
   struct Node {
     Vec3 lo, hi;
     int first, last;  // a leaf: primitives order_[first..last]; an inner node: its two children
     bool leaf;
   };
+
+ private:
   static double box_d2(const Node& n, const Vec3& p) {
     const Vec3 gap = (n.lo - p).cwiseMax(p - n.hi).cwiseMax(0.0);
     return gap.squaredNorm();

@@ -2,6 +2,7 @@
 #include "meshround/cancel.h"
 
 #include "box_tree.h"
+#include "parallel.h"
 
 #include <algorithm>
 #include <cmath>
@@ -19,20 +20,44 @@ double facet_distance(const MeshTopology& mesh, int f, const Vec3& p) {
   return (closest_point_on_triangle(p, mesh.corner(f, 0), mesh.corner(f, 1), mesh.corner(f, 2), nullptr) - p).norm();
 }
 
-// Best-first walk over the facets around the seed until no nearer sharp edge can exist.
-std::pair<int, int> nearest_sharp_edge(const MeshTopology& mesh, const Vec3& seed, double feature_angle_deg,
-                                       double search_radius) {
-  int start = -1;
-  double dstart = INFINITY;
-  CancelPoll poll(1 << 14);
-  for (int f = 0; f < mesh.num_facets(); ++f) {
-    poll.tick();
+// The facet nearest to the seed (of equally near ones, the first), or -1: every facet is looked at, on all
+// cores. With `on_edge` (a mesh edge the seed lies on) only the facets around its two ends are.
+std::pair<int, double> nearest_facet(const MeshTopology& mesh, const Vec3& seed, std::array<int, 2> on_edge) {
+  using Best = std::pair<double, int>;  // (distance, facet): the smaller pair is the nearer
+  auto consider = [&](int f, Best& best) {
     const Vec3 a = mesh.corner(f, 0), b = mesh.corner(f, 1), c = mesh.corner(f, 2);
     const Vec3 gap = (a.cwiseMin(b).cwiseMin(c) - seed).cwiseMax(seed - a.cwiseMax(b).cwiseMax(c)).cwiseMax(0.0);
-    if (gap.squaredNorm() >= dstart * dstart) continue;  // its bounding box is already farther
-    const double d = facet_distance(mesh, f, seed);
-    if (d < dstart) dstart = d, start = f;
+    if (gap.squaredNorm() > best.first * best.first) return;  // its bounding box is already farther
+    best = std::min(best, Best{facet_distance(mesh, f, seed), f});
+  };
+  Best best{INFINITY, -1};
+  const int n = mesh.num_vertices();
+  if (on_edge[0] >= 0 && on_edge[0] < n && on_edge[1] >= 0 && on_edge[1] < n) {
+    double t;
+    const Vec3 on = closest_point_on_segment(seed, mesh.point(on_edge[0]), mesh.point(on_edge[1]), &t);
+    const double slack = on_plane_slack((mesh.point(on_edge[1]) - mesh.point(on_edge[0])).norm(), seed.cwiseAbs().maxCoeff());
+    if ((on - seed).norm() <= slack) {
+      for (int v : on_edge)
+        for (const int* f = mesh.facets_begin(v); f != mesh.facets_end(v); ++f) consider(*f, best);
+      if (best.second >= 0 && best.first <= slack) return {best.second, best.first};  // a facet through the seed
+      best = {INFINITY, -1};
+    }
   }
+  best = reduce_ranges(mesh.num_facets(), 1 << 15, best, [&](int begin, int end, Best& partial) {
+    CancelPoll poll(1 << 14);
+    for (int f = begin; f < end; ++f) {
+      poll.tick();
+      consider(f, partial);
+    }
+  }, [](Best& into, const Best& other) { into = std::min(into, other); });
+  return {best.second, best.first};
+}
+
+// Best-first walk over the facets around the seed until no nearer sharp edge can exist.
+std::pair<int, int> nearest_sharp_edge(const MeshTopology& mesh, const Vec3& seed, double feature_angle_deg,
+                                       double search_radius, std::array<int, 2> on_edge) {
+  const auto [start, dstart] = nearest_facet(mesh, seed, on_edge);
+  CancelPoll poll(1 << 14);
   // No facet at a finite distance (coordinates so large that the distances overflow): nothing is near.
   if (start < 0)
     throw RoundingError(ErrorCode::NoSharpEdge, "no sharp edge within " + format_number(search_radius) + " mm of the seed " + format_point(seed));
@@ -162,8 +187,9 @@ int same_side_facet(const MeshTopology& mesh, int f, int v, int came, int target
 
 }  // namespace
 
-SharpChain trace_chain(const MeshTopology& mesh, const Vec3& seed, double feature_angle_deg, double search_radius) {
-  const auto [a, b] = nearest_sharp_edge(mesh, seed, feature_angle_deg, search_radius);
+SharpChain trace_chain(const MeshTopology& mesh, const Vec3& seed, double feature_angle_deg, double search_radius,
+                       std::array<int, 2> on_edge) {
+  const auto [a, b] = nearest_sharp_edge(mesh, seed, feature_angle_deg, search_radius, on_edge);
   const double fold = fold_width(search_radius);
   SharpChain chain;
   std::vector<int> forward{a, b};

@@ -1,5 +1,7 @@
 #include "ends.h"
 
+#include "delta.h"
+
 #include "meshround/surface.h"
 
 #include <algorithm>
@@ -246,7 +248,7 @@ std::vector<EndSegment> end_segments(const MeshTopology& mesh, const SharpChain&
   return out;
 }
 
-bool split_along_end_segments(const MeshTopology& mesh, const std::vector<EndSegment>& segments, Points& V, Triangles& F) {
+bool split_along_end_segments(const MeshTopology& mesh, const std::vector<EndSegment>& segments, MeshDelta& delta) {
   if (segments.empty()) return false;
   SplitMesh m;
   for (int v = 0; v < mesh.num_vertices(); ++v) m.points.push_back(mesh.point(v));
@@ -289,16 +291,17 @@ bool split_along_end_segments(const MeshTopology& mesh, const std::vector<EndSeg
   const bool changed = m.points.size() > size_t(mesh.num_vertices()) ||
                        std::any_of(m.gone.begin(), m.gone.end(), [](char g) { return g != 0; });
   if (!changed) return false;
-  V.resize(Eigen::Index(m.points.size()), 3);
-  for (size_t i = 0; i < m.points.size(); ++i) V.row(Eigen::Index(i)) = m.points[i].transpose();
-  for (int v = 0; v < mesh.num_vertices(); ++v)
-    if (m.points[size_t(v)] == mesh.point(v)) V.row(v) = mesh.V.row(v);  // bit for bit
-  Eigen::Index n = 0;
-  for (size_t t = 0; t < m.tris.size(); ++t) n += !m.gone[t];
-  F.resize(n, 3);
-  n = 0;
-  for (size_t t = 0; t < m.tris.size(); ++t)
-    if (!m.gone[t]) F.row(n++) << m.tris[t][0], m.tris[t][1], m.tris[t][2];
+  const int n = mesh.num_vertices(), facets = mesh.num_facets();
+  std::vector<int> removed;
+  std::vector<std::array<int, 3>> added;
+  for (size_t t = 0; t < m.tris.size(); ++t) {
+    if (int(t) < facets && m.gone[t]) removed.push_back(int(t));
+    if (int(t) >= facets && !m.gone[t]) added.push_back(m.tris[t]);
+  }
+  std::vector<std::pair<int, Vec3>> moved;
+  for (int v = 0; v < n; ++v)
+    if (m.points[size_t(v)] != mesh.point(v)) moved.push_back({v, m.points[size_t(v)]});
+  delta = make_delta(mesh, std::move(removed), moved, std::vector<Vec3>(m.points.begin() + n, m.points.end()), added);
   return true;
 }
 

@@ -7,6 +7,7 @@
 // section arc moved along the chain onto that plane (EndCut), the base meshes are trimmed up to the
 // plane, and the gap between the end profile and the end face is filled in the plane by the sewing pass.
 #pragma once
+#include "meshround/mesh_delta.h"
 #include "meshround/spine.h"
 #include "meshround/surface.h"
 
@@ -40,7 +41,7 @@ struct EndSegment {
 // The segments a chain's round needs (none where no base mesh goes on past an end's plane).
 std::vector<EndSegment> end_segments(const MeshTopology& mesh, const SharpChain& chain, const BaseMeshes& base,
                                      const std::vector<ProfileStation>& stations, const RoundingSurface& surface);
-// Returns false (V, F untouched) when there is nothing to split.
-bool split_along_end_segments(const MeshTopology& mesh, const std::vector<EndSegment>& segments, Points& V, Triangles& F);
+// The split as a delta of `mesh` (mesh_delta.h); returns false (delta untouched) when there is nothing to split.
+bool split_along_end_segments(const MeshTopology& mesh, const std::vector<EndSegment>& segments, MeshDelta& delta);
 
 }  // namespace meshround

@@ -1,5 +1,6 @@
 #include "meshround/mesh.h"
 #include "meshround/cancel.h"
+#include "parallel.h"
 
 #include <algorithm>
 #include <cmath>
@@ -44,24 +45,50 @@ MeshTopology::MeshTopology(const Points& V_, const Triangles& F_) : V(V_), F(F_)
       if (!V.row(i).allFinite())
         throw RoundingError(ErrorCode::InvalidInput, "vertex " + std::to_string(i) + " has a NaN or infinite coordinate");
   }
-  vf_start_.assign(n + 1, 0);
-  CancelPoll poll(1 << 16);
-  for (int f = 0; f < m; ++f)
-    for (int k = 0; k < 3; ++k) {
-      poll.tick();
-      const int v = F(f, k);
-      if (v < 0 || v >= n)
-        throw RoundingError(ErrorCode::InvalidInput, "facet " + std::to_string(f) + " refers to vertex " + std::to_string(v) +
-                            ", which does not exist");
-      ++vf_start_[v + 1];
-    }
-  for (int v = 0; v < n; ++v) vf_start_[v + 1] += vf_start_[v];
-  vf_.resize(vf_start_[n]);
-  std::vector<int> fill(vf_start_.begin(), vf_start_.end() - 1);
-  for (int f = 0; f < m; ++f) {
-    poll.tick();
-    for (int k = 0; k < 3; ++k) vf_[fill[F(f, k)]++] = f;
+  // Vertex -> facets in CSR form, built by two threads over the two halves of the facets: each counts and
+  // then fills its own share of every vertex's list (the first half's facets first), so each list is in
+  // facet order, as one thread makes it.
+  const int half = m / 2;
+  std::vector<int> count[2] = {std::vector<int>(size_t(n), 0), std::vector<int>(size_t(n), 0)};
+  long bad[2] = {-1, -1};  // the first bad index entry of each half (3 f + k)
+  auto count_half = [&](int part) {
+    CancelPoll poll(1 << 16);
+    std::vector<int>& c = count[part];
+    for (int f = part ? half : 0, end = part ? m : half; f < end; ++f)
+      for (int k = 0; k < 3; ++k) {
+        poll.tick();
+        const int v = F(f, k);
+        if (v < 0 || v >= n) {
+          bad[part] = 3L * f + k;
+          return;
+        }
+        ++c[size_t(v)];
+      }
+  };
+  in_parallel([&] { count_half(0); }, [&] { count_half(1); });
+  for (long at : bad)
+    if (at >= 0)
+      throw RoundingError(ErrorCode::InvalidInput, "facet " + std::to_string(at / 3) + " refers to vertex " +
+                          std::to_string(F(Eigen::Index(at / 3), Eigen::Index(at % 3))) + ", which does not exist");
+  vf_start_.assign(size_t(n) + 1, 0);
+  for (int v = 0; v < n; ++v) {
+    const int here = count[0][size_t(v)] + count[1][size_t(v)];
+    if (here == 0) unused_.push_back(v);
+    vf_start_[size_t(v) + 1] = vf_start_[size_t(v)] + here;
+    // The cursors: the first half fills from the list's start, the second after the first half's share.
+    count[1][size_t(v)] = vf_start_[size_t(v)] + count[0][size_t(v)];
+    count[0][size_t(v)] = vf_start_[size_t(v)];
   }
+  vf_.resize(size_t(vf_start_[size_t(n)]));
+  auto fill_half = [&](int part) {
+    CancelPoll poll(1 << 16);
+    std::vector<int>& cursor = count[part];
+    for (int f = part ? half : 0, end = part ? m : half; f < end; ++f) {
+      poll.tick();
+      for (int k = 0; k < 3; ++k) vf_[size_t(cursor[size_t(F(f, k))]++)] = f;
+    }
+  };
+  in_parallel([&] { fill_half(0); }, [&] { fill_half(1); });
 }
 
 bool MeshTopology::facet_has_edge(int f, int a, int b) const {

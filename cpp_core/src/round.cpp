@@ -7,6 +7,7 @@
 #include <array>
 #include <set>
 
+#include "delta.h"
 #include "ends.h"
 #include "guard.h"
 #include "network.h"
@@ -263,23 +264,38 @@ int count_thin_facets(const MeshTopology& mesh, const MeshEdit& edit, double* mi
   return thin;
 }
 
-RoundedChain round_one_chain(const MeshTopology& mesh, const Vec3& seed, const RoundOptions& opt, RoundReport& report,
-                             Points& V_out, Triangles& F_out, const NetworkPart& net = {}, std::vector<Vec3>* round_points = nullptr,
+// Where a chain is picked again on the mesh its round is made on: the middle of one of its edges, and that
+// edge's ends in this mesh (or -1: the mesh's facets are searched for it).
+struct ChainSeed {
+  Vec3 point;
+  std::array<int, 2> on_edge{-1, -1};
+};
+
+// The ends of the input edge (a, b) in a mesh made from the input (its lineage; empty: the input itself).
+std::array<int, 2> edge_in(const Lineage& lineage, std::array<int, 2> edge) {
+  if (lineage.vertex.empty()) return edge;
+  std::array<int, 2> out{-1, -1};
+  for (size_t j = 0; j < lineage.vertex.size(); ++j)
+    for (int k = 0; k < 2; ++k)
+      if (lineage.vertex[j] == edge[k]) out[k] = int(j);
+  return out;
+}
+
+RoundedChain round_one_chain(const MeshTopology& mesh, const ChainSeed& seed, const RoundOptions& opt, RoundReport& report,
+                             MeshDelta* delta, const NetworkPart& net = {}, std::vector<Vec3>* round_points = nullptr,
                              bool is_probe = false, bool split = false);
 
 // The room probe: the chain is rounded again (and thrown away) at wider reaches, narrowest first (a
 // wider band costs more); the first of kWiderReaches that makes no facet under kThinDeg goes into
 // rep.reach_for_room (0: none does).
-void probe_reach_for_room(const MeshTopology& mesh, const Vec3& seed, const RoundOptions& opt, const NetworkPart& net,
+void probe_reach_for_room(const MeshTopology& mesh, const ChainSeed& seed, const RoundOptions& opt, const NetworkPart& net,
                           bool split, ChainReport& rep) {
   auto gives_room = [&](double wider) {
     RoundOptions o = opt;
     o.reach = wider * opt.reach;
     RoundReport scratch;
-    Points V;
-    Triangles F;
     try {
-      const RoundedChain probe = round_one_chain(mesh, seed, o, scratch, V, F, net, nullptr, true, split);
+      const RoundedChain probe = round_one_chain(mesh, seed, o, scratch, nullptr, net, nullptr, true, split);
       if (probe.report.thin_facets > 0) return false;
     } catch (const RoundingError& e) {
       if (e.code == ErrorCode::Cancelled) throw;
@@ -293,13 +309,14 @@ void probe_reach_for_room(const MeshTopology& mesh, const Vec3& seed, const Roun
 }
 
 // `split`: the mesh is the input already split along the chain's end segments (ends.h). `net`: its corners
-// with other chains of the call; `round_points` (if given) gets the round's vertices.
-RoundedChain round_one_chain(const MeshTopology& mesh, const Vec3& seed, const RoundOptions& opt, RoundReport& report,
-                             Points& V_out, Triangles& F_out, const NetworkPart& net, std::vector<Vec3>* round_points,
+// with other chains of the call; `round_points` (if given) gets the round's vertices. `delta`: the result,
+// as an edit of `mesh` (none for a probe).
+RoundedChain round_one_chain(const MeshTopology& mesh, const ChainSeed& seed, const RoundOptions& opt, RoundReport& report,
+                             MeshDelta* delta, const NetworkPart& net, std::vector<Vec3>* round_points,
                              bool is_probe, bool split) {
   PassTimer timer(report);
   const double r_max = opt.max_radius();
-  SharpChain chain = trace_chain(mesh, seed, opt.feature_angle_deg, opt.reach * r_max);
+  SharpChain chain = trace_chain(mesh, seed.point, opt.feature_angle_deg, opt.reach * r_max, seed.on_edge);
   chain.index_segments();
   const RadiusLaw law(opt, chain, opt.reach * r_max);
   const double reach = opt.reach * law.max_radius();
@@ -327,12 +344,19 @@ RoundedChain round_one_chain(const MeshTopology& mesh, const Vec3& seed, const R
   const std::vector<ProfileStation> stations = end_cut_profiles(ctx, law, tol, opt.max_new_facets, net, surface, &out.report.surface_deviation);
   timer.done("surface");
   if (!split) {  // a base mesh going on past an end face's plane: split along the band's corner, round that
-    Points V_split;
-    Triangles F_split;
-    if (split_along_end_segments(mesh, end_segments(mesh, chain, base, stations, surface), V_split, F_split)) {
+    MeshDelta split_delta;
+    if (split_along_end_segments(mesh, end_segments(mesh, chain, base, stations, surface), split_delta)) {
+      Points V_split;
+      Triangles F_split;
+      StepOrigin from_split;
+      apply_delta(mesh.V, mesh.F, split_delta, V_split, F_split, &from_split);
       const MeshTopology split_mesh(V_split, F_split);
       timer.done("ends");
-      return round_one_chain(split_mesh, seed, opt, report, V_out, F_out, net, round_points, is_probe, true);
+      MeshDelta on_split;
+      const ChainSeed on_split_mesh{seed.point, edge_in(Lineage{from_split.vertex, from_split.facet}, seed.on_edge)};
+      RoundedChain out = round_one_chain(split_mesh, on_split_mesh, opt, report, delta ? &on_split : nullptr, net, round_points, is_probe, true);
+      if (delta) *delta = delta_through(mesh.V, mesh.F, V_split, F_split, from_split, on_split);
+      return out;
     }
   }
 
@@ -381,7 +405,7 @@ RoundedChain round_one_chain(const MeshTopology& mesh, const Vec3& seed, const R
   timer.done("improve");
   check_result(edit, chain, reach, tol);  // refuses a result worse than its input (guard.h)
   timer.done("check");
-  if (!is_probe) write_mesh(edit, V_out, F_out);  // a probe only counts thin facets (below)
+  if (delta) *delta = delta_from_edit(edit);  // a probe only counts thin facets (below)
   timer.done("write");
 
   ChainReport& rep = out.report;
@@ -520,7 +544,8 @@ RoundResult round_edges(const Points& V, const Triangles& F, const std::vector<V
   RoundResult result;
   // One seed per distinct chain, found on the input; each chain is then rounded on the latest mesh.
   std::vector<SharpChain> chains;
-  std::vector<Vec3> chain_seeds, picked;
+  std::vector<ChainSeed> chain_seeds;
+  std::vector<Vec3> picked;
   const MeshTopology input(V, F);
   std::set<std::vector<int>> seen;
   for (const Vec3& seed : seeds) {
@@ -531,7 +556,8 @@ RoundResult round_edges(const Points& V, const Triangles& F, const std::vector<V
     if (!seen.insert(key).second) continue;
     // The middle of an edge of the chain picks the same chain again, even after other chains are rounded.
     const size_t i = (c.points.size() - 1) / 2;
-    chain_seeds.push_back(0.5 * (c.points[i] + c.points[(i + 1) % c.points.size()]));
+    const size_t j = (i + 1) % c.points.size();
+    chain_seeds.push_back({0.5 * (c.points[i] + c.points[j]), {c.vertices[i], c.vertices[j]}});
     picked.push_back(seed);
     chains.push_back(std::move(c));
   }
@@ -539,37 +565,52 @@ RoundResult round_edges(const Points& V, const Triangles& F, const std::vector<V
   std::vector<std::pair<SphereCorner, size_t>> spheres;  // each with a chain that ends there
   std::vector<NetworkPart> network = find_corners(input, chains, picked, opt, &spheres);
   std::vector<Vec3> made_points;  // the vertices of the rounds made so far (kept only where a corner needs them)
+  // Each chain is rounded on the mesh the ones before made, its result an edit (MeshDelta) of that mesh.
+  // One chain alone: its edit is the call's, made at the band's cost. Several passes: each edit is applied
+  // (a whole mesh), and the call's edit is found through the last mesh's lineage.
+  const size_t passes = chain_seeds.size() + spheres.size();
+  MeshDelta delta;
   Points cur_V;
   Triangles cur_F;
-  for (size_t k = 0; k < chain_seeds.size(); ++k) {
-    poll_cancel();
+  Lineage lineage;  // of (cur_V, cur_F)
+  auto apply_step = [&](const MeshDelta& step, bool on_input) {
     Points next_V;
     Triangles next_F;
+    StepOrigin origin;
+    apply_delta(on_input ? V : cur_V, on_input ? F : cur_F, step, next_V, next_F, &origin);
+    lineage = follow(lineage, origin);
+    cur_V.swap(next_V);
+    cur_F.swap(next_F);
+  };
+  for (size_t k = 0; k < chain_seeds.size(); ++k) {
+    poll_cancel();
     NetworkPart& net = network[k];
     if (std::any_of(net.corners.begin(), net.corners.end(), [](const CornerEnd& c) { return c.other_made || c.sphere; }))
       net.earlier_round_points = made_points;
     std::vector<Vec3>* keep = network.size() > 1 && !net.corners.empty() ? &made_points : nullptr;
+    MeshDelta step;
     if (k == 0) {
-      result.chains.push_back(round_one_chain(input, chain_seeds[k], chain_options[k], result.report, next_V, next_F, net, keep));
+      result.chains.push_back(round_one_chain(input, chain_seeds[k], chain_options[k], result.report, &step, net, keep));
     } else {
       const MeshTopology mesh(cur_V, cur_F);
-      result.chains.push_back(round_one_chain(mesh, chain_seeds[k], chain_options[k], result.report, next_V, next_F, net, keep));
+      const ChainSeed seed{chain_seeds[k].point, edge_in(lineage, chain_seeds[k].on_edge)};
+      result.chains.push_back(round_one_chain(mesh, seed, chain_options[k], result.report, &step, net, keep));
     }
-    cur_V.swap(next_V);
-    cur_F.swap(next_F);
+    if (passes == 1) delta = std::move(step);
+    else apply_step(step, k == 0);
   }
   for (const auto& [corner, k] : spheres) {  // the rounds made, the ball between their ends (sphere_corner.h)
     poll_cancel();
     const double tol = chain_options[k].tolerance > 0 ? chain_options[k].tolerance : corner.radius / 100.0;
-    Points next_V;
-    Triangles next_F;
-    blend_sphere_corner(cur_V, cur_F, corner, tol, chains[k], chain_options[k].reach * corner.radius, next_V, next_F);
-    cur_V.swap(next_V);
-    cur_F.swap(next_F);
+    MeshDelta step;
+    blend_sphere_corner(cur_V, cur_F, corner, tol, chains[k], chain_options[k].reach * corner.radius, step);
+    apply_step(step, false);
   }
+  if (passes > 1) delta = delta_from_lineage(V, F, cur_V, cur_F, lineage);
   // Later rounds and corner patches replace facets that earlier rounds made (and counted): the new facets
   // are counted again, within the chains' reach.
   if (std::any_of(network.begin(), network.end(), [](const NetworkPart& net) { return !net.corners.empty(); })) {
+    if (passes == 1) apply_delta(V, F, delta, cur_V, cur_F);
     Vec3 lo = Vec3::Constant(INFINITY), hi = Vec3::Constant(-INFINITY);
     double reach = 0;
     for (size_t k = 0; k < chains.size(); ++k) {
@@ -578,8 +619,8 @@ RoundResult round_edges(const Points& V, const Triangles& F, const std::vector<V
     }
     recount_new_facets(V, F, cur_V, cur_F, lo.array() - 2 * reach, hi.array() + 2 * reach, result.report);
   }
-  result.vertices.swap(cur_V);
-  result.triangles.swap(cur_F);
+  if (opt.write_arrays) apply_delta(V, F, delta, result.vertices, result.triangles);
+  result.delta = std::move(delta);
   RoundReport& rep = result.report;
   rep.input_forces_small_angles = rep.min_new_angle_deg < 10 && rep.min_input_angle_deg < 10;
   rep.seconds_total = std::chrono::duration<double>(Clock::now() - start).count();

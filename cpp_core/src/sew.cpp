@@ -1,4 +1,6 @@
 #include "meshround/sew.h"
+
+#include "delta.h"
 #include "meshround/cancel.h"
 
 #include <cstdio>
@@ -154,32 +156,8 @@ SewStats sew_round(MeshEdit& edit, size_t round_begin, size_t round_end, const R
   return stats;
 }
 
-void write_mesh(const MeshEdit& edit, Points& V, Triangles& F) {
-  const MeshTopology& in = edit.input;
-  const int n_in = in.num_vertices(), n_all = n_in + int(edit.new_points.size());
-  std::vector<int> index(n_all, -1);
-  std::vector<char> removed(in.num_facets(), 0);
-  for (int f : edit.removed) removed[f] = 1;
-  std::vector<std::array<int, 3>> facets;
-  facets.reserve(in.num_facets() - edit.removed.size() + edit.added.size());
-  CancelPoll poll(1 << 16);
-  for (int f = 0; f < in.num_facets(); ++f)
-    if (poll.tick(), !removed[f]) facets.push_back({in.F(f, 0), in.F(f, 1), in.F(f, 2)});
-  facets.insert(facets.end(), edit.added.begin(), edit.added.end());
-  for (const auto& f : facets)
-    for (int v : f) index[v] = 0;
-  int n_out = 0;
-  for (int v = 0; v < n_all; ++v)
-    if (index[v] == 0) index[v] = n_out++;
-  V.resize(n_out, 3);
-  for (int v = 0; v < n_all; ++v)
-    if (index[v] >= 0) {
-      if (v < n_in && !edit.moved.count(v)) V.row(index[v]) = in.V.row(v);  // bit for bit
-      else V.row(index[v]) = edit.point(v).transpose();
-    }
-  F.resize(Eigen::Index(facets.size()), 3);
-  for (size_t i = 0; i < facets.size(); ++i)
-    for (int k = 0; k < 3; ++k) F(Eigen::Index(i), k) = index[facets[i][k]];
+void write_mesh(const MeshEdit& edit, Points& V, Triangles& F, StepOrigin* origin) {
+  apply_delta(edit.input.V, edit.input.F, delta_from_edit(edit), V, F, origin);
 }
 
 }  // namespace meshround

@@ -1,5 +1,7 @@
 #include "sphere_corner.h"
 
+#include "delta.h"
+
 #include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
@@ -165,7 +167,7 @@ bool rows_to_apex(MeshEdit& edit, const std::vector<int>& loop, const int at[3],
 }  // namespace
 
 void blend_sphere_corner(const Points& V, const Triangles& F, const SphereCorner& corner, double tolerance,
-                         const SharpChain& chain, double reach, Points& V_out, Triangles& F_out) {
+                         const SharpChain& chain, double reach, MeshDelta& delta) {
   const MeshTopology mesh(V, F);
   int vertex = -1;
   for (int v = 0; v < mesh.num_vertices(); ++v)
@@ -217,7 +219,7 @@ void blend_sphere_corner(const Points& V, const Triangles& F, const SphereCorner
   }
   edit.added = tris;
   check_result(edit, chain, reach, tolerance);
-  write_mesh(edit, V_out, F_out);
+  delta = delta_from_edit(edit);
 }
 
 }  // namespace meshround

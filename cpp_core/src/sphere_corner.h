@@ -6,6 +6,7 @@
 // them (the corner of the three faces and the rounds' end caps) and meshes the ball there.
 #pragma once
 #include "meshround/chain.h"
+#include "meshround/mesh_delta.h"
 #include "meshround/types.h"
 
 namespace meshround {
@@ -23,10 +24,10 @@ struct SphereCorner {
 // meet at no single point.
 bool corner_ball(const Vec3 points[3], const Vec3 normals[3], double radius, bool convex, Vec3* centre, Vec3 feet[3]);
 
-// V / F: the mesh with the three rounds made. Refuses (corner_not_blendable) when the corner is not one
+// V / F: the mesh with the three rounds made; `delta`: the patch as an edit of it. Refuses (corner_not_blendable) when the corner is not one
 // hole bounded by the three arcs, and (result_invalid) when the patch fails the output check (guard.h;
 // `chain` and `reach` for its placement test).
 void blend_sphere_corner(const Points& V, const Triangles& F, const SphereCorner& corner, double tolerance,
-                         const SharpChain& chain, double reach, Points& V_out, Triangles& F_out);
+                         const SharpChain& chain, double reach, MeshDelta& delta);
 
 }  // namespace meshround

@@ -17,7 +17,7 @@ import time
 
 import numpy as np
 
-from . import inputs, meshconv, progress, shapes
+from . import inputs, meshconv, meshedit, progress, shapes
 from .errors import CancelToken, RoundingError, check_cancelled, require_core
 
 __all__ = ["RoundingError", "CancelToken", "RoundingResult", "round_edges", "round_arrays", "trace_chains",
@@ -27,17 +27,33 @@ __all__ = ["RoundingError", "CancelToken", "RoundingResult", "round_edges", "rou
 @dataclasses.dataclass
 class RoundingResult:
     """What one rounding produced; `mesh` is new, the input mesh is never modified."""
-    vertices: np.ndarray  # float64 (n, 3): the rounded mesh as arrays ...
-    triangles: np.ndarray  # int64 (m, 3)
     surfaces: list      # Part.Face on a Part.BSplineSurface: the exact rolling-ball surface, per chain
     spines: list        # Part.Wire: the ball-centre path, per chain
     chains: list        # Part.Wire: the sharp-edge chains that were rounded
     contacts: list      # Part.Wire: the ball's contact lines, two per chain (side A, side B)
     report: dict        # JSON-ready numbers: chains, facets_removed, facets_added, max_deviation, ...
+    delta: dict = dataclasses.field(default=None, repr=False)  # the result as an edit of the input (meshedit.py)
+    _input: tuple = dataclasses.field(default=None, repr=False)  # the input's (vertices, triangles): what delta edits
+
+    @property
+    def vertices(self):
+        """float64 (n, 3): the rounded mesh as arrays ..."""
+        return self._arrays[0]
+
+    @property
+    def triangles(self):
+        """... int64 (m, 3); made on first use from the input and the delta (the engine's apply_delta)."""
+        return self._arrays[1]
+
+    @functools.cached_property
+    def _arrays(self):
+        vertices, triangles = _call_engine("apply_delta", *self._input, self.delta)
+        return _checked_mesh_arrays(vertices, triangles)
 
     @functools.cached_property
     def mesh(self):
-        """... and as a Mesh.Mesh, built on first use (a preview that only draws arrays skips it)."""
+        """... and as a Mesh.Mesh, built on first use (a preview that only draws arrays skips it); the
+        same mesh vertex for vertex and facet for facet."""
         return meshconv.arrays_to_mesh(self.vertices, self.triangles)
 
     def __repr__(self):
@@ -65,10 +81,24 @@ def round_edges(mesh, seeds, radius, tolerance=None, feature_angle=30.0, reach=3
     inputs.check_mesh(mesh)
     arguments = _engine_arguments(seeds, radius, tolerance, feature_angle, reach, max_new_facets, cancel)
     vertices, triangles = meshconv.mesh_to_arrays(mesh)
-    result = _round(vertices, triangles, arguments)
-    result.mesh  # noqa: B018  (build it now: part of this call's cost, and of report["seconds"])
+    read = time.perf_counter()
+    # The output is the input's copy with the band edited (meshedit.py); the copy is made on the other
+    # core while the engine runs.
+    copy = meshedit.start_copy(mesh) if _editable_shape(mesh) else None
+    try:
+        result = _round(vertices, triangles, arguments, arrays=False)
+    finally:
+        copy = copy() if copy is not None else None  # the worker is always joined
+    engine = time.perf_counter()
+    if copy is not None and meshedit.editable(mesh, result.delta):
+        edited = meshedit.edited_copy(copy, result.delta, vertices)
+        if edited is not None:
+            result.mesh = edited
+    result.mesh  # noqa: B018  (build it now if it was not edited: part of this call's cost)
     check_cancelled(cancel)  # a request while the result was built: nothing is returned
-    result.report["seconds"] = time.perf_counter() - started
+    done = time.perf_counter()
+    result.report["seconds"] = done - started
+    result.report["seconds_stages"] = dict(mesh_to_arrays=read - started, engine=engine - read, output_mesh=done - engine)
     return result
 
 
@@ -139,29 +169,42 @@ def _engine_arguments(seeds, radius, tolerance, feature_angle, reach, max_new_fa
     )
 
 
-def _round(vertices, triangles, arguments, engine="round_edges"):
-    """core.<engine> (round_edges, or change_radius: the same result dict) turned into a RoundingResult."""
+def _round(vertices, triangles, arguments, engine="round_edges", arrays=True):
+    """core.<engine> (round_edges, or change_radius: the same result dict) turned into a RoundingResult;
+    `arrays`: make result.vertices / triangles now (else on first use, from the input and the delta;
+    change_radius has no delta of its input, its arrays always come with it)."""
     vertices = np.ascontiguousarray(vertices, dtype=np.float64)
     triangles = np.ascontiguousarray(triangles, dtype=np.int64)
     seeds = arguments.pop("seeds")
     radius = arguments.pop("radius")
-    raw = _call_engine(engine, vertices, triangles, seeds, radius, **arguments)
+    if engine == "round_edges":
+        raw = _call_engine(engine, vertices, triangles, seeds, radius, arrays=arrays, **arguments)
+    else:
+        raw = _call_engine(engine, vertices, triangles, seeds, radius, **arguments)
     check_cancelled(arguments["cancel"])  # asked for after the engine's last poll
-    out_vertices, out_triangles = _checked_mesh_arrays(raw["vertices"], raw["triangles"])
+    delta = None if raw["delta"] is None else _checked_delta(raw["delta"])
     contacts = [side for pair in raw["contacts"] for side in pair]
     closed = list(raw["closed"])
     result = RoundingResult(
-        vertices=out_vertices, triangles=out_triangles,
         surfaces=shapes.faces_from_brep(raw["faces"]),
         spines=shapes.polyline_wires(raw["spines"], closed),
         chains=shapes.polyline_wires(raw["chains"], closed),
         contacts=shapes.polyline_wires(contacts, [c for c in closed for _ in (0, 1)]),
         report=_json_ready(raw["report"]),
+        delta=delta, _input=None if delta is None else (vertices, triangles),
     )
     if "strips" in raw:  # change_radius: what was found on each existing round (reround.py)
         result.report["strips"] = _json_ready(raw["strips"])
-    result.report.update(facets_in=len(triangles), facets_out=len(out_triangles))
+    if raw["vertices"] is not None:
+        result._arrays = _checked_mesh_arrays(raw["vertices"], raw["triangles"])
+    facets_out = len(result.triangles) if delta is None else len(triangles) - len(delta["removed"]) + len(delta["added"])
+    result.report.update(facets_in=len(triangles), facets_out=facets_out)
     return result
+
+
+def _editable_shape(mesh):
+    """A mesh whose copy can take the engine's edit (meshedit.py): no Placement."""
+    return mesh.Placement.isIdentity()
 
 
 def _call_engine(name, *args, **kwargs):
@@ -190,6 +233,20 @@ def _checked_mesh_arrays(vertices, triangles):
         raise RoundingError("the engine returned an invalid mesh (index out of range or non-finite point)",
                             "result_invalid")
     return vertices, triangles
+
+
+def _checked_delta(delta):
+    """The engine's result as an edit of its input, refused if it could not make a valid mesh (checked at
+    the band's cost: the new facets' vertex ids and the new and moved points)."""
+    n = int(delta["input_vertices"])
+    added = np.asarray(delta["added"]).reshape(-1, 3)
+    points = np.concatenate([np.asarray(delta["new_points"]).reshape(-1, 3), np.asarray(delta["moved_to"]).reshape(-1, 3)])
+    if int(delta["input_facets"]) - len(delta["removed"]) + len(added) <= 0:
+        raise RoundingError("the engine returned an empty mesh", "result_invalid")
+    if (len(added) and (added.min() < 0 or added.max() >= n + len(delta["new_points"]))) or not np.all(np.isfinite(points)):
+        raise RoundingError("the engine returned an invalid mesh (index out of range or non-finite point)",
+                            "result_invalid")
+    return delta
 
 
 def _json_ready(value):

@@ -44,7 +44,7 @@ struct SharpChain {
   double project_from(const Vec3& p, double s_hint, double* distance) const;
 
  private:
-  friend SharpChain trace_chain(const MeshTopology&, const Vec3&, double, double);
+  friend SharpChain trace_chain(const MeshTopology&, const Vec3&, double, double, std::array<int, 2>);
   void finish_geometry(const MeshTopology& mesh);
   int segment_at(double s, double* local) const;
   std::vector<Vec3> vertex_tangents_;
@@ -54,8 +54,10 @@ struct SharpChain {
 // The sharp edge nearest to `seed` (within `search_radius`) and the whole chain through it.
 // Throws RoundingError when no sharp edge is near the seed. A thin facet on the chain (height under
 // search_radius / 6 and a quarter of its longest edge) holds part of the edge's fold: not a junction.
+// `on_edge` (optional): the ends of a mesh edge the seed lies on (a chain traced before, picked again by an
+// edge's middle): the search starts from the facets around it instead of looking at every facet.
 SharpChain trace_chain(const MeshTopology& mesh, const Vec3& seed, double feature_angle_deg,
-                       double search_radius);
+                       double search_radius, std::array<int, 2> on_edge = {-1, -1});
 
 // The facets within `reach_distance` of the chain, split into its two sides. A base mesh is bounded
 // by the chain, other sharp edges, the mesh boundary and the reach.

@@ -42,6 +42,8 @@ class MeshTopology {
   int neighbour(int f, int a, int b) const;
   // Vertices joined to v by an edge.
   std::vector<int> vertex_neighbours(int v) const;
+  // Vertices that no facet uses, ascending (usually none).
+  const std::vector<int>& unused_vertices() const { return unused_; }
 
   Vec3 facet_normal(int f) const;  // unit normal (zero for a degenerate facet)
   // A repeated vertex or (numerically) no area.
@@ -64,6 +66,7 @@ class MeshTopology {
 
  private:
   std::vector<int> vf_start_, vf_;
+  std::vector<int> unused_;
 };
 
 // Closest point on triangle (a, b, c) to p. `region` tells where it lies: 0 inside, 1..3 on edge

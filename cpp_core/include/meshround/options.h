@@ -33,6 +33,9 @@ struct RoundOptions {
   // the first poll: the run is refused at once. It must be cheap and thread-safe, e.g. the load of a
   // std::atomic<bool> that another thread sets.
   std::function<bool()> cancelled;
+  // The result's whole mesh as arrays (RoundResult::vertices / triangles; default true). False: only its
+  // edit of the input (RoundResult::delta), for a caller that applies that to its own copy of the input.
+  bool write_arrays = true;
 
   double max_radius() const;  // the radius, or the largest of the law's
   double effective_tolerance() const { return tolerance > 0 ? tolerance : max_radius() / 100.0; }

@@ -3,7 +3,7 @@
 //   trace_chain -> collect_base_meshes -> solve_station (adaptive) -> loft_profiles
 //     -> end faces (ends.h: the end profiles onto the end faces' planes, the base mesh split at the band's
 //        corner where it goes on past one) -> trim_base_meshes -> mesh_rounding_surface -> sew_round
-//     -> improve_new_facets -> check_result (guard.h) -> write_mesh
+//     -> improve_new_facets -> check_result (guard.h) -> the result as an edit of the input (mesh_delta.h)
 //
 // Chains are rounded one after the other, each on the result of the previous one. Where two of them end
 // at one vertex, their rounds are mitred (find_corners in round.cpp): both stop at the plane bisecting
@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "meshround/chain.h"
+#include "meshround/mesh_delta.h"
 #include "meshround/options.h"
 
 namespace meshround {
@@ -62,8 +63,9 @@ struct RoundReport {
 };
 
 struct RoundResult {
-  Points vertices;
+  Points vertices;      // the rounded mesh (empty unless RoundOptions::write_arrays), in apply_delta's order
   Triangles triangles;
+  MeshDelta delta;      // the same as an edit of the input (mesh_delta.h)
   std::vector<RoundedChain> chains;
   RoundReport report;
 };

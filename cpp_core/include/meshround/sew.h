@@ -4,6 +4,7 @@
 // like its neighbours, close the gaps left at capped chain ends (planar end-face pieces between the end
 // profile and the trimmed end face), and write the compact output arrays.
 #pragma once
+#include "meshround/mesh_delta.h"
 #include "meshround/mesh_edit.h"
 
 namespace meshround {
@@ -18,7 +19,8 @@ struct SewStats {
 // `fill` refines the triangulation of the gaps (end caps), e.g. inner points near the chain only.
 SewStats sew_round(MeshEdit& edit, size_t round_begin, size_t round_end, const Refinement& fill = {});
 
-// The edited mesh as compact arrays: unused vertices dropped, input vertices keep their order and values.
-void write_mesh(const MeshEdit& edit, Points& V, Triangles& F);
+// The edited mesh as compact arrays, in apply_delta's order (mesh_delta.h): unused vertices dropped, the
+// input's kept vertices keep their order and values. `origin` (optional): where each came from.
+void write_mesh(const MeshEdit& edit, Points& V, Triangles& F, StepOrigin* origin = nullptr);
 
 }  // namespace meshround
