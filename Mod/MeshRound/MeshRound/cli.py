@@ -136,14 +136,15 @@ def add_reround_parser(commands):
     rr.add_argument("--report", metavar="FILE", help="write the report (with found_radius per strip) as JSON")
 
 
-def check_extensions(parser, args):
+def check_extensions(parser, args, decks=True):
+    """IN and OUT formats known (`decks`: a solver deck pair is known too, written back in its format)."""
     decks_in, decks_out = deck_family(args.input), deck_family(args.output)
-    if decks_in and decks_out:
+    if decks and decks_in and decks_out:
         if decks_in != decks_out:
             parser.error(f"'{args.input}' is a {decks_in} deck and '{args.output}' a {decks_out} deck: "
                          "a deck is written back in its own format")
         return
-    if args.part is not None:
+    if getattr(args, "part", None) is not None:
         parser.error("--part needs a solver deck as IN and OUT (.k .key .dyn, .bdf .nas .dat, .inp)")
     for path, allowed, role in ((args.input, READ_EXTENSIONS, "read"),
                                 (args.output, WRITE_EXTENSIONS, "write")):
@@ -339,7 +340,7 @@ def main(argv=None):
         elif args.command in ("max-radius", "sweep"):
             run_radius_tool(args)
         elif args.command == "reround":
-            check_extensions(parser, args)
+            check_extensions(parser, args, decks=False)
             if args.radius < 0 or (args.tolerance is not None and args.tolerance <= 0):
                 parser.error("--radius must be >= 0 and --tolerance > 0")
             run_reround(args)
