@@ -92,18 +92,40 @@ std::pair<int, int> nearest_sharp_edge(const MeshTopology& mesh, const Vec3& see
 // default reach factor of 3, for the distance within which the chain and its base meshes are searched.
 double fold_width(double reach_distance) { return reach_distance / 6; }
 
+// A sharp edge of a thin facet on a chain edge goes on with the chain's fold when it runs along the chain
+// edge, within this angle (degrees): the surface turns about (nearly) the same line across both.
+constexpr double kFoldLineDeg = 30;
+
+// The facet with corners v, u, x, or -1.
+int facet_of(const MeshTopology& mesh, int v, int u, int x) {
+  for (const int* f = mesh.facets_begin(v); f != mesh.facets_end(v); ++f)
+    if (mesh.facet_has_edge(*f, u, x)) return *f;
+  return -1;
+}
+
 // True when a facet (v, u, x) exists and is thin: its smallest height is under a quarter of its longest
 // edge and under `fold` (fold_width): a coarse mesher's triangle along a sharp edge, holding part of its
 // fold.
 bool thin_facet(const MeshTopology& mesh, int v, int u, int x, double fold) {
-  for (const int* f = mesh.facets_begin(v); f != mesh.facets_end(v); ++f) {
-    if (!mesh.facet_has_edge(*f, u, x)) continue;
-    const Vec3 a = mesh.point(v), b = mesh.point(u), c = mesh.point(x);
-    const double longest = std::max({(b - a).norm(), (c - b).norm(), (a - c).norm()});
-    const double height = (b - a).cross(c - a).norm() / std::max(longest, 1e-300);
-    return height < 0.25 * longest && height < fold;
-  }
-  return false;
+  if (facet_of(mesh, v, u, x) < 0) return false;
+  const Vec3 a = mesh.point(v), b = mesh.point(u), c = mesh.point(x);
+  const double longest = std::max({(b - a).norm(), (c - b).norm(), (a - c).norm()});
+  const double height = (b - a).cross(c - a).norm() / std::max(longest, 1e-300);
+  return height < 0.25 * longest && height < fold;
+}
+
+// A thin facet's sharp edge (p, q) goes on with the fold of its chain edge (along `chain_dir`) when it runs
+// along it (kFoldLineDeg): the fold is spread over the facet. One that runs across (the end cap of a round
+// made before, beside a sliver its trim left at a mitre) is a wall of its own.
+bool along_fold(const MeshTopology& mesh, int p, int q, const Vec3& chain_dir) {
+  const Vec3 d = (mesh.point(q) - mesh.point(p)).normalized();
+  return std::abs(d.dot(chain_dir.normalized())) >= std::cos(kFoldLineDeg * M_PI / 180);
+}
+
+// A thin facet (v, u, x) on the chain edge (v, u) whose edge (v, x) is part of that edge's fold, not a new
+// sharp edge.
+bool fold_sliver(const MeshTopology& mesh, int v, int u, int x, double fold) {
+  return thin_facet(mesh, v, u, x, fold) && along_fold(mesh, v, x, mesh.point(u) - mesh.point(v));
 }
 
 // How many open edges from a chain stopped by the boundary are followed to see whether the sharp edge
@@ -155,7 +177,7 @@ int next_chain_vertex(const MeshTopology& mesh, int prev, int v, double feature_
   int best = -1;
   for (int w : ahead) {
     const bool alone = std::all_of(ahead.begin(), ahead.end(), [&](int x) {
-      return x == w || thin_facet(mesh, v, prev, x, fold) || thin_facet(mesh, v, w, x, fold);
+      return x == w || fold_sliver(mesh, v, prev, x, fold) || fold_sliver(mesh, v, w, x, fold);
     });
     const bool apex = std::any_of(ahead.begin(), ahead.end(), [&](int x) {
       return x != w && thin_facet(mesh, v, w, x, fold) &&
@@ -373,8 +395,9 @@ BaseMeshes collect_base_meshes(const MeshTopology& mesh, const SharpChain& chain
     within_reach(chain.facet_a[i], chain.arc_length[i]);
     within_reach(chain.facet_b[i], chain.arc_length[i]);
   }
-  // A thin facet on a chain edge holds part of the edge's fold: its other edges are folds too, not walls.
-  std::unordered_set<int> fold_facets;
+  // A thin facet on a chain edge holds part of the edge's fold: its other edges are folds too, not walls,
+  // where they run along the chain (along_fold).
+  std::unordered_map<int, Vec3> fold_facets;  // thin facet on a chain edge -> that edge's direction
   const double fold = fold_width(reach_distance);
   for (int i = 0; i < chain.num_edges(); ++i)
     for (int f : {chain.facet_a[i], chain.facet_b[i]}) {
@@ -382,8 +405,12 @@ BaseMeshes collect_base_meshes(const MeshTopology& mesh, const SharpChain& chain
       int x = mesh.F(f, 0);
       for (int k = 0; k < 3; ++k)
         if (mesh.F(f, k) != v && mesh.F(f, k) != u) x = mesh.F(f, k);
-      if (thin_facet(mesh, v, u, x, fold)) fold_facets.insert(f);
+      if (thin_facet(mesh, v, u, x, fold)) fold_facets[f] = mesh.point(u) - mesh.point(v);
     }
+  auto continues_fold = [&](int f, int a, int b) {
+    const auto it = fold_facets.find(f);
+    return it != fold_facets.end() && along_fold(mesh, a, b, it->second);
+  };
   for (int side = 0; side < 2; ++side) {
     std::vector<int> todo;
     for (int f : side == 0 ? chain.facet_a : chain.facet_b) {
@@ -408,7 +435,7 @@ BaseMeshes collect_base_meshes(const MeshTopology& mesh, const SharpChain& chain
           throw RoundingError(ErrorCode::NonManifoldInput, "facet " + std::to_string(g) + " at " + format_point(mesh.corner(g, 0)) +
                               " near the chain is degenerate (no area); repair the mesh there first");
         const bool earlier = g >= 0 && earlier_round && std::all_of(&mesh.F(g, 0), &mesh.F(g, 0) + 3, [&](int x) { return earlier_round->count(x) > 0; });
-        if (g < 0 || earlier || (!fold_facets.count(f) && mesh.is_feature_edge(a, b, feature_angle_deg))) {
+        if (g < 0 || earlier || (mesh.is_feature_edge(a, b, feature_angle_deg) && !continues_fold(f, a, b))) {
           base.walls[side].insert(key);
           continue;
         }
