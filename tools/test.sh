@@ -10,7 +10,8 @@ cd "$ROOT"
 ctest --test-dir build --output-on-failure -j2
 /usr/bin/python3 -m pytest -q -p no:cacheprovider tests
 # A bounded fuzzing pass (tools/fuzz.sh), clang-14 + ASan + UBSan: 60 s on each target. The array
-# boundary's target must come back clean; the engine's still finds the open faults listed in
+# boundary's and the deck readers' targets must come back clean; the engine's still finds the open faults listed in
 # tests/fuzz/regressions/README.md, so its pass prints what it finds without failing the suite.
 "$ROOT/tools/fuzz.sh" 60 fuzz_arrays
+"$ROOT/tools/fuzz.sh" 60 fuzz_decks
 "$ROOT/tools/fuzz.sh" 60 fuzz_round || echo "fuzz_round: the findings above are kept in fuzz-out/fuzz_round/artifacts (open faults)"

@@ -222,6 +222,15 @@ py::dict result_dict(const RoundResult& res, bool arrays, bool with_delta) {
   rep["reach_for_room"] = r.reach_for_room;
   rep["seconds_total"] = r.seconds_total, rep["seconds_per_pass"] = r.seconds;
   rep["per_chain"] = chain_reports;
+  py::list corners;
+  for (const CornerReport& c : r.corners) {
+    py::dict d;
+    d["vertex"] = py::make_tuple(c.vertex.x(), c.vertex.y(), c.vertex.z()), d["kind"] = c.kind, d["chains"] = c.chains;
+    d["radius"] = c.radius, d["seam_vertices"] = c.seam_vertices, d["deviation"] = c.deviation;
+    d["normal_jump_deg"] = c.normal_jump_deg, d["seam_turn_deg"] = c.seam_turn_deg;
+    corners.append(d);
+  }
+  rep["corners"] = corners;
   out["report"] = rep;
   return out;
 }

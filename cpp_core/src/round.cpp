@@ -8,6 +8,7 @@
 #include <set>
 
 #include "delta.h"
+#include "corner_report.h"
 #include "ends.h"
 #include "guard.h"
 #include "network.h"
@@ -618,6 +619,9 @@ RoundResult round_edges(const Points& V, const Triangles& F, const std::vector<V
       reach = std::max(reach, chain_options[k].reach * chain_options[k].max_radius());
     }
     recount_new_facets(V, F, cur_V, cur_F, lo.array() - 2 * reach, hi.array() + 2 * reach, result.report);
+    std::vector<double> radii;
+    for (const RoundOptions& o : chain_options) radii.push_back(o.max_radius());
+    result.report.corners = report_corners(cur_V, cur_F, network, spheres, result.chains, radii);
   }
   if (opt.write_arrays) apply_delta(V, F, delta, result.vertices, result.triangles);
   result.delta = std::move(delta);

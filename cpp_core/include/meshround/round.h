@@ -49,6 +49,21 @@ struct RoundedChain {
   ChainReport report;
 };
 
+// One corner of a network of rounds (where picked chains end at one vertex), measured on the finished mesh
+// against the exact rounds and corner ball (corner_report.h).
+struct CornerReport {
+  Vec3 vertex;                // where the chains meet
+  std::string kind;           // "mitre": two rounds meeting on the plane halving the chains' angle, a crease as in
+                              // OCCT's fillet; "sphere": three rounds and the ball touching their three faces
+  std::vector<int> chains;    // the rounds meeting there (RoundResult::chains)
+  double radius = 0;
+  int seam_vertices = 0;      // the mesh vertices on the seams (the mitre curve; the patch's three arcs)
+  double deviation = 0;       // mm: the seams' (and a sphere patch's facets') largest distance from the exact surfaces
+  double normal_jump_deg = 0; // largest angle between the exact normals of the surfaces meeting at a seam vertex:
+                              // 0 where they join tangentially (G1: a sphere patch), a mitre's crease otherwise
+  double seam_turn_deg = 0;   // largest turn between the two facets across a seam edge (the mesh's own view of it)
+};
+
 struct RoundReport {
   int facets_removed = 0, facets_added = 0;
   double max_deviation = 0;          // max over chains of the measured facet-to-surface distance
@@ -58,6 +73,7 @@ struct RoundReport {
   int thin_facets = 0;                 // new facets under 10 degrees, over all chains
   int thin_facets_short_of_room = 0;   // of those, the ones on chains with a reach_for_room
   double reach_for_room = 0;           // the largest over chains (ChainReport)
+  std::vector<CornerReport> corners;      // one per corner of the network, if any
   std::map<std::string, double> seconds;  // per pass, summed over chains
   double seconds_total = 0;
 };

@@ -1,0 +1,83 @@
+"""The report's entry per corner of a network of rounds: where it is, which rounds meet there, how (a mitre
+or a sphere patch), and how the finished mesh measures against the exact surfaces along the seams.
+
+Expectations come from the CAD solids, not from the engine: the corners are the solid's vertices where
+the picked edges meet; a mitre's largest normal jump is the crease the rounds meet in at the edge left
+sharp (the angle between the two faces' normals there, as in OCCT's fillet); a sphere patch joins its
+three rounds tangentially (0 deg). Deviations are held to the tolerance, r / 100."""
+import pytest
+
+import cases
+import MeshPart
+import Part
+
+import MeshRound
+
+V = cases.V
+RIM_SEEDS = [V(40, 15, 30), V(60, 30, 30), V(40, 45, 30), V(20, 30, 30)]
+
+
+def rim_corners(solid):
+    """The top vertices of the pocket's rim (z = 30, inside the block's outline)."""
+    return [v.Point for v in solid.Vertexes if abs(v.Point.z - 30) < 1e-6 and 19 < v.Point.x < 61 and 14 < v.Point.y < 46]
+
+
+def wall_crease_deg(solid, corner):
+    """The angle between the normals of the two pocket walls meeting at `corner` (the edge left sharp)."""
+    walls = [f for f in solid.Faces if any((v.Point - corner).Length < 1e-6 for v in f.Vertexes)
+             and abs(f.normalAt(*f.Surface.parameter(f.CenterOfMass)).z) < 0.9]
+    assert len(walls) == 2
+    n0, n1 = (w.normalAt(*w.Surface.parameter(w.CenterOfMass)) for w in walls)
+    return n0.getAngle(n1) * 180 / 3.141592653589793
+
+
+@pytest.mark.parametrize("draft, element", [(0.0, 1.0), (10.0, 0.8)])
+def test_a_pocket_rim_reports_its_four_mitres(draft, element):
+    solid = cases.pocket_block(draft)
+    mesh = MeshPart.meshFromShape(Shape=solid, MaxLength=element)
+    r = 2.0
+    res = MeshRound.round_edges(mesh, RIM_SEEDS, r)
+    corners = res.report["corners"]
+    expected = rim_corners(solid)
+    assert len(expected) == 4 and len(corners) == 4
+    for c in corners:
+        at = V(*c["vertex"])
+        assert min((at - p).Length for p in expected) < 1e-4, c
+        assert c["kind"] == "mitre" and len(set(c["chains"])) == 2 and c["radius"] == r
+        assert c["seam_vertices"] >= 5  # the shared end column, contact to contact
+        assert c["deviation"] <= 0.01 * r, c
+        crease = wall_crease_deg(solid, min(expected, key=lambda p: (p - at).Length))
+        assert abs(c["normal_jump_deg"] - crease) <= 0.5, (c, crease)
+        assert abs(c["seam_turn_deg"] - crease) <= 8.0, (c, crease)  # chords: up to half their turn (~8 deg) off
+    # Each rim edge meets two others, one at each end.
+    ends = sorted(k for c in corners for k in c["chains"])
+    assert ends == [0, 0, 1, 1, 2, 2, 3, 3]
+
+
+def test_a_box_corner_reports_its_sphere_patch_tangent_to_the_rounds():
+    box = Part.makeBox(100, 60, 40)
+    r = 5.0
+    res = MeshRound.round_edges(MeshPart.meshFromShape(Shape=box, MaxLength=2.0),
+                                [V(50, 60, 40), V(100, 30, 40), V(100, 60, 20)], r)
+    (c,) = res.report["corners"]
+    assert c["kind"] == "sphere" and sorted(c["chains"]) == [0, 1, 2]
+    assert (V(*c["vertex"]) - V(100, 60, 40)).Length < 1e-6
+    assert c["seam_vertices"] >= 3 * 4  # three arcs of several points each
+    assert c["deviation"] <= 0.01 * r, c
+    assert c["normal_jump_deg"] <= 1.0, c  # G1 with the three rounds
+    # The mesh's own turn across the seams: no larger than a chord's turn inside a round at r / 100 (~16 deg).
+    assert c["seam_turn_deg"] <= 16.0, c
+
+
+def test_two_top_edges_report_the_crease_at_the_vertical_edge():
+    box = Part.makeBox(100, 60, 40)
+    res = MeshRound.round_edges(MeshPart.meshFromShape(Shape=box, MaxLength=2.5), [V(50, 60, 40), V(100, 30, 40)], 5.0)
+    (c,) = res.report["corners"]
+    assert c["kind"] == "mitre" and sorted(c["chains"]) == [0, 1]
+    assert c["deviation"] <= 0.01 * 5.0, c
+    assert abs(c["normal_jump_deg"] - 90.0) <= 0.5, c  # the box's vertical edge stays sharp
+
+
+def test_a_single_chain_has_no_corner_entries(box):
+    from conftest import BOX_SEED
+    assert MeshRound.round_edges(box, BOX_SEED, 3.0).report["corners"] == []
