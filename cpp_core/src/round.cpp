@@ -382,6 +382,7 @@ RoundedChain round_one_chain(const MeshTopology& mesh, const ChainSeed& seed, co
   for (int end = 0; end < 2 && !chain.closed; ++end) {
     const CornerEnd* c = corner_at(net, end ? chain.points.back() : chain.points.front());
     shared.no_graded_rows |= c != nullptr && !c->sphere;  // both rounds at a mitre make the same rows
+    shared.exact_end[end] = c != nullptr && !c->sphere;
     shared.at[end] = c && c->other_made;
   }
   // The two rounds' end columns are the same points, each computed from its own balls: where those are

@@ -236,8 +236,8 @@ RoundMeshStats mesh_rounding_surface(const RoundingSurface& surface, const std::
           row.push_back({row.front().id, samples[i], v});
           break;
         }
-        const Vec3 p = surface.value(samples[i], v) + offsets.at(samples[i], v);
         const bool end = !surface.closed && (i == 0 || i + 1 == samples.size());
+        const Vec3 p = surface.value(samples[i], v) + (end && shared.exact_end[i == 0 ? 0 : 1] ? Vec3::Zero() : offsets.at(samples[i], v));
         if (end && shared.at[i == 0 ? 0 : 1]) {  // the other round's vertex at this corner
           const int id = shared.vertex_at(p);
           if (id < 0)

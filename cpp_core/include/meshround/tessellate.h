@@ -27,6 +27,9 @@ struct SharedEnds {
   bool at[2] = {false, false};                         // u_first, u_last
   std::function<int(const Vec3&)> vertex_at;          // an existing vertex at that point, or -1
   bool no_graded_rows = false;                         // set for every round with a corner end
+  // A mitre end (u_first, u_last): its column is the exact end profile, without the trim lines' offsets
+  // (each round's own), so that both rounds compute the same points in the mitre plane.
+  bool exact_end[2] = {false, false};
 };
 
 RoundMeshStats mesh_rounding_surface(const RoundingSurface& surface, const std::vector<ProfileStation>& stations,
