@@ -81,3 +81,17 @@ def test_two_top_edges_report_the_crease_at_the_vertical_edge():
 def test_a_single_chain_has_no_corner_entries(box):
     from conftest import BOX_SEED
     assert MeshRound.round_edges(box, BOX_SEED, 3.0).report["corners"] == []
+
+
+@pytest.mark.parametrize("element", [0.6, 2.0])
+def test_a_drafted_rim_mitres_on_meshes_whose_trim_lines_leave_the_lofted_edge(element):
+    """The trim lines' offsets (float32 trim points off the lofted edge) once moved each round's end column
+    off the mitre plane by up to 0.005 mm, so the second round found no vertex of the first's to share
+    (refused corner_not_blendable). The columns are the exact end profile now."""
+    import soundness
+    from MeshRound import meshconv
+    mesh = MeshPart.meshFromShape(Shape=cases.pocket_block(10.0), MaxLength=element)
+    res = MeshRound.round_edges(mesh, RIM_SEEDS, 2.0)
+    assert not soundness.problems(*meshconv.mesh_to_arrays(mesh), *meshconv.mesh_to_arrays(res.mesh))
+    assert len(res.report["corners"]) == 4
+    assert all(c["deviation"] <= 0.02 for c in res.report["corners"]), res.report["corners"]
