@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "guard.h"
+#include "meshround/cancel.h"
 #include "meshround/mesh_edit.h"
 #include "meshround/sew.h"
 
@@ -78,12 +79,18 @@ std::vector<int> hole_loop(const MeshTopology& mesh, const std::unordered_set<in
   return loop;
 }
 
+constexpr int kMaxBisections = 40;
+
 // Longest-edge bisection of the inner edges longer than `longest` (the hole's own sides stay: they are
 // the rounds'), each new point put on the ball.
 void refine_on_ball(MeshEdit& edit, std::vector<std::array<int, 3>>& tris, const std::unordered_set<std::uint64_t>& sides,
                     const SphereCorner& c, double longest) {
   auto length = [&](int a, int b) { return (edit.point(a) - edit.point(b)).norm(); };
+  // Each pass halves the longest inner edges: kMaxBisections passes reach any length a patch needs.
+  int passes = 0;
   for (bool split = true; split;) {
+    poll_cancel();
+    if (++passes > kMaxBisections) not_blendable(c, "its patch does not refine to the tolerance");
     split = false;
     std::unordered_map<std::uint64_t, std::vector<int>> by_edge;
     for (int t = 0; t < int(tris.size()); ++t)
@@ -97,7 +104,12 @@ void refine_on_ball(MeshEdit& edit, std::vector<std::array<int, 3>>& tris, const
         if (length(tris[t][j], tris[t][(j + 1) % 3]) > length(tris[t][k], tris[t][(k + 1) % 3])) k = j;
       const int a = tris[t][k], b = tris[t][(k + 1) % 3];
       const std::uint64_t key = edge_key(a, b);
+      if (!std::isfinite(length(a, b)))
+        not_blendable(c, "the rounds' ends do not close a patch on the corner ball (a point of it is not a number)");
       if (sides.count(key) || length(a, b) <= longest) continue;
+      // (A side across the ball has no middle on it: the patch would not be a corner's.)
+      if ((0.5 * (edit.point(a) + edit.point(b)) - c.centre).norm() <= 1e-3 * c.radius)
+        not_blendable(c, "the rounds' ends lie on opposite sides of the corner ball");
       const std::vector<int>& two = by_edge[key];
       if (std::any_of(two.begin(), two.end(), [&](int u) { return touched[u]; })) continue;
       const Vec3 mid = c.centre + c.radius * (0.5 * (edit.point(a) + edit.point(b)) - c.centre).normalized();

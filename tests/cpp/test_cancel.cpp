@@ -107,7 +107,10 @@ double cancel_after(const Input& in, double after) {
   const auto returned = Clock::now();
   canceller.join();
   EXPECT_TRUE(cancelled) << "the run ended before the request, or did not stop";
-  EXPECT_EQ(polls_after.load(), 1) << "the first poll that sees the request stops the run";
+  // The first poll that sees the request stops the run; a pass that runs on several threads (parallel.h)
+  // may have one poll in flight on each of them.
+  EXPECT_GE(polls_after.load(), 1);
+  EXPECT_LE(polls_after.load(), int(std::max(1u, std::thread::hardware_concurrency()))) << "polls went on after the request";
   return seconds(returned - requested);
 }
 
