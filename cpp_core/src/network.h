@@ -34,4 +34,9 @@ const CornerEnd* corner_at(const NetworkPart& net, const Vec3& end_point);
 std::vector<NetworkPart> find_corners(const MeshTopology& input, const std::vector<SharpChain>& chains, const std::vector<Vec3>& picked,
                                       const RoundOptions& opt, std::vector<std::pair<SphereCorner, size_t>>* spheres);
 
+// Each chain's options: a radius law keeps the control points nearest to that chain (each point belongs
+// to one chain); a chain without a control point is an error, as is a point far from every chain.
+std::vector<RoundOptions> options_per_chain(const RoundOptions& opt, const std::vector<SharpChain>& chains,
+                                            const std::vector<Vec3>& picked);
+
 }  // namespace meshround

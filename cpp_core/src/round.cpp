@@ -455,30 +455,6 @@ RoundedChain round_one_chain(const MeshTopology& mesh, const ChainSeed& seed, co
   return out;
 }
 
-// Each chain's options: a radius law keeps the control points nearest to that chain (each point belongs
-// to one chain); a chain without a control point is an error, as is a point far from every chain.
-std::vector<RoundOptions> options_per_chain(const RoundOptions& opt, const std::vector<SharpChain>& chains,
-                                            const std::vector<Vec3>& picked) {
-  std::vector<RoundOptions> out(chains.size(), opt);
-  if (opt.radius_law.empty() || chains.size() < 2) return out;
-  for (RoundOptions& o : out) o.radius_law.clear(), o.tolerance = opt.effective_tolerance();  // one for all
-  for (const RadiusControl& c : opt.radius_law) {
-    size_t best = 0;
-    double best_d = INFINITY;
-    for (size_t k = 0; k < chains.size(); ++k) {
-      double d;
-      chains[k].project(c.point, &d);
-      if (d < best_d) best_d = d, best = k;
-    }
-    out[best].radius_law.push_back(c);  // RadiusLaw reports a point too far from its chain
-  }
-  for (size_t k = 0; k < chains.size(); ++k)
-    if (out[k].radius_law.empty())
-      throw RoundingError(ErrorCode::InvalidInput, "no radius control point lies on the chain picked at " + format_point(picked[k]) +
-                          ": give each chain at least one (point, radius)");
-  return out;
-}
-
 // The thin facets (and the smallest angle) among the result's facets that are not the input's, counted
 // anew after a pass that replaces facets the rounds made (the sphere corners' patches). Only facets with
 // a corner in the box [lo, hi] are looked at: every made facet has one there (the output check's reach).
