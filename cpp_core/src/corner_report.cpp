@@ -64,6 +64,22 @@ Vec3 facet_normal(const Points& V, const Triangles& F, int f) {
   return (b - a).cross(c - a).normalized();
 }
 
+// The turn across each seam edge (both ends flagged in `seam`), measured between its two facets, into
+// c.seam_turn_deg; `at_edge(middle)` is called at every seam edge's middle.
+template <class AtEdge>
+void seam_edges(const Points& V, const Triangles& F, const std::vector<char>& seam, AtEdge at_edge, CornerReport& c) {
+  std::map<std::pair<int, int>, std::vector<int>> edges;  // seam edge -> its facets
+  for (Eigen::Index f = 0; f < F.rows(); ++f)
+    for (int k = 0; k < 3; ++k) {
+      const int a = F(f, k), b = F(f, (k + 1) % 3);
+      if (seam[size_t(a)] && seam[size_t(b)]) edges[{std::min(a, b), std::max(a, b)}].push_back(int(f));
+    }
+  for (const auto& [edge, facets] : edges) {
+    at_edge(Vec3(0.5 * (V.row(edge.first) + V.row(edge.second))));
+    if (facets.size() == 2) c.seam_turn_deg = std::max(c.seam_turn_deg, angle_deg(facet_normal(V, F, facets[0]), facet_normal(V, F, facets[1])));
+  }
+}
+
 // One corner's seams: `on_seam(p)` picks the seam vertices, `exact(p)` gives the normals of the exact
 // surfaces meeting there and `misfit(p)` the larger distance from them, taken at the seam vertices and
 // at the middles of the seam edges (the chords between them). The turn across each seam edge is measured
@@ -78,16 +94,7 @@ void measure_seams(const Points& V, const Triangles& F, OnSeam on_seam, Exact ex
       c.normal_jump_deg = std::max(c.normal_jump_deg, angle_deg(n0, n1));
       c.deviation = std::max(c.deviation, misfit(Vec3(V.row(v))));
     }
-  std::map<std::pair<int, int>, std::vector<int>> edges;  // seam edge -> its facets
-  for (Eigen::Index f = 0; f < F.rows(); ++f)
-    for (int k = 0; k < 3; ++k) {
-      const int a = F(f, k), b = F(f, (k + 1) % 3);
-      if (seam[size_t(a)] && seam[size_t(b)]) edges[{std::min(a, b), std::max(a, b)}].push_back(int(f));
-    }
-  for (const auto& [edge, facets] : edges) {
-    c.deviation = std::max(c.deviation, misfit(Vec3(0.5 * (V.row(edge.first) + V.row(edge.second)))));
-    if (facets.size() == 2) c.seam_turn_deg = std::max(c.seam_turn_deg, angle_deg(facet_normal(V, F, facets[0]), facet_normal(V, F, facets[1])));
-  }
+  seam_edges(V, F, seam, [&](const Vec3& middle) { c.deviation = std::max(c.deviation, misfit(middle)); }, c);
 }
 
 CornerReport mitre_report(const Points& V, const Triangles& F, const CornerEnd& end, int i, int j,
@@ -175,6 +182,40 @@ std::vector<CornerReport> report_corners(const Points& V, const Triangles& F, co
     if (ids.size() == 3) out.push_back(sphere_report(V, F, ball, ids, rounds));
   }
   return out;
+}
+
+CornerReport report_rolled_corner(const Points& V, const Triangles& F, const RolledCorner& corner, const RoundedChain& odd,
+                                  const RoundedChain& rolled, double radius, int odd_index, int rolled_index) {
+  CornerReport c;
+  c.vertex = corner.vertex, c.kind = "rolled", c.chains = {odd_index, rolled_index}, c.radius = radius;
+  const double r = radius, s = corner.odd_convex ? 1 : -1;
+  // The rolled round's balls near the vertex that lean on the odd round (their contact on it): at each,
+  // how far the contact lies from the odd round's exact surface, and the angle between the two outward
+  // normals there -- the balls touch from either side of the surface, one in the solid and one outside,
+  // so those are s (p - odd centre) and s (rolled centre - p), s = +1 when the odd round is convex.
+  int side = -1;
+  for (size_t i = 0; i < rolled.spine.size(); ++i)
+    for (int k = 0; k < 2; ++k) {
+      const Vec3 p = rolled.contacts[k][i];
+      if ((p - corner.vertex).norm() > 4 * r) continue;
+      const OnRound o = on_round(odd, r, p);
+      if (!o.on_arc || o.misfit > kOnSurfaceShare * r) continue;
+      side = k;
+      c.deviation = std::max(c.deviation, o.misfit);
+      c.normal_jump_deg = std::max(c.normal_jump_deg, angle_deg(s * (p - o.centre), s * (rolled.spine[i] - p)));
+    }
+  if (side < 0) return c;
+  // The mesh's seam: its vertices on the odd round along that contact line; the turn across its edges.
+  std::vector<char> seam(size_t(V.rows()), 0);
+  for (Eigen::Index v = 0; v < V.rows(); ++v) {
+    const Vec3 p = V.row(v);
+    if ((p - corner.vertex).norm() > 4 * r) continue;
+    const OnRound o = on_round(odd, r, p);
+    if (o.on_arc && o.misfit <= kOnSurfaceShare * r && (at(rolled.contacts[side], nearest_on(rolled.contacts[side], p)) - p).norm() <= kOnSurfaceShare * r)
+      seam[size_t(v)] = 1, ++c.seam_vertices;
+  }
+  seam_edges(V, F, seam, [](const Vec3&) {}, c);
+  return c;
 }
 
 }  // namespace meshround

@@ -175,7 +175,8 @@ bool find_crossing(const MeshEdit& edit, const std::vector<Facet>& kept, double 
 
 }  // namespace
 
-void check_result(const MeshEdit& edit, const SharpChain& chain, double reach, double tolerance) {
+void check_result(const MeshEdit& edit, const SharpChain& chain, double reach, double tolerance,
+                  const std::vector<SharpChain>* network) {
   const MeshTopology& in = edit.input;
   const int n_in = in.num_vertices();
   // The changed vertices: those of removed, made and moved facets. Every edge with an end among them
@@ -225,7 +226,13 @@ void check_result(const MeshEdit& edit, const SharpChain& chain, double reach, d
   auto within_reach = [&](int v) {
     double d;
     chain.project(edit.point(v), &d);
-    return d <= reach + margin;
+    if (d <= reach + margin) return true;
+    if (network)
+      for (const SharpChain& other : *network) {
+        other.project(edit.point(v), &d);
+        if (d <= reach + margin) return true;
+      }
+    return false;
   };
   for (const Facet& f : edit.added)
     if (!within_reach(f[0]) && !within_reach(f[1]) && !within_reach(f[2]))

@@ -11,6 +11,8 @@
 // - self-intersection: no made facet crosses another made facet or a kept facet near it.
 // A failure throws RoundingError(result_invalid) naming the check and the place.
 #pragma once
+#include <vector>
+
 #include "meshround/chain.h"
 #include "meshround/mesh_edit.h"
 
@@ -19,7 +21,10 @@ namespace meshround {
 constexpr double kDegenerateDeg = 0.01;  // smallest angle of a sound facet (the yardstick's own)
 
 // `reach`: the largest distance from the chain at which the rounding may place a point; `tolerance`: the
-// chordal tolerance (how far the round's end profile may stand off an end face).
-void check_result(const MeshEdit& edit, const SharpChain& chain, double reach, double tolerance);
+// chordal tolerance (how far the round's end profile may stand off an end face). `network`: the other
+// chains rounded in the same call, if any -- a made facet may lie wholly within their reach instead (a
+// large facet an earlier round cut, cut again).
+void check_result(const MeshEdit& edit, const SharpChain& chain, double reach, double tolerance,
+                  const std::vector<SharpChain>* network = nullptr);
 
 }  // namespace meshround

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <array>
+#include <map>
 #include <cmath>
 #include <string>
 
@@ -14,6 +15,18 @@ const CornerEnd* corner_at(const NetworkPart& net, const Vec3& end_point) {
 }
 
 namespace {
+
+// +1 where chain c's edge at its end vertex v is convex (the solid's angle there is under 180 degrees),
+// -1 where it is concave, 0 where that edge has not two facets; n: the two facets' normals.
+int convexity_at(const MeshTopology& input, const SharpChain& c, int v, Vec3 n[2]) {
+  const int next = c.vertices.front() == v ? c.vertices[1] : c.vertices[c.vertices.size() - 2];
+  const std::vector<int> sides = input.edge_facets(v, next);
+  if (sides.size() != 2) return 0;
+  for (int k = 0; k < 2; ++k) n[k] = input.facet_normal(sides[k]);
+  int third = 0;  // the corner of sides[0] off the edge: behind the other side's plane on a convex edge
+  while (input.F(sides[0], third) == v || input.F(sides[0], third) == next) ++third;
+  return (input.corner(sides[0], third) - input.point(v)).dot(n[1]) < 0 ? 1 : -1;
+}
 
 // Three picked chains ending at vertex v (chains `ids`): their three faces there (each chain's two sides,
 // paired up), the convexity all three share, and the ball touching the three faces.
@@ -35,16 +48,12 @@ SphereCorner three_round_corner(const MeshTopology& input, const std::vector<Sha
     const bool at_start = c.vertices.front() == v;
     const int next = at_start ? c.vertices[1] : c.vertices[c.vertices.size() - 2];
     corner.toward[i] = (input.point(v) - input.point(next)).normalized();
-    const std::vector<int> sides = input.edge_facets(v, next);
-    if (sides.size() != 2) refuse("an edge there has " + std::to_string(sides.size()) + " facets");
     Vec3 n[2];
-    for (int k = 0; k < 2; ++k) {
-      n[k] = input.facet_normal(sides[k]);
+    const int sign = convexity_at(input, c, v, n);
+    if (sign == 0) refuse("an edge there has not two facets");
+    for (int k = 0; k < 2; ++k)
       if (std::none_of(normals.begin(), normals.end(), [&](const Vec3& m) { return m.dot(n[k]) > same; })) normals.push_back(n[k]);
-    }
-    int third = 0;  // the corner of sides[0] off the edge: behind the other side's plane on a convex edge
-    while (input.F(sides[0], third) == v || input.F(sides[0], third) == next) ++third;
-    convex += (input.corner(sides[0], third) - input.point(v)).dot(n[1]) < 0 ? 1 : -1;
+    convex += sign;
   }
   if (normals.size() != 3) refuse(std::to_string(normals.size()) + " faces meet there, not three");
   if (std::abs(convex) != 3) refuse("convex and concave edges mixed at one corner are not blended yet");
@@ -57,6 +66,70 @@ SphereCorner three_round_corner(const MeshTopology& input, const std::vector<Sha
 }
 
 }  // namespace
+
+std::vector<int> plan_stages(const MeshTopology& input, const std::vector<SharpChain>& chains, const std::vector<Vec3>& picked,
+                             const RoundOptions& opt, std::vector<RolledCorner>* rolled) {
+  const size_t n = chains.size();
+  std::map<int, std::vector<size_t>> ending;  // vertex -> the open chains ending there
+  for (size_t k = 0; k < n; ++k)
+    if (!chains[k].closed) {
+      ending[chains[k].vertices.front()].push_back(k);
+      if (chains[k].vertices.back() != chains[k].vertices.front()) ending[chains[k].vertices.back()].push_back(k);
+    }
+  std::vector<size_t> group(n);  // chains joined by mitres and sphere corners (union-find)
+  for (size_t k = 0; k < n; ++k) group[k] = k;
+  auto root = [&](size_t k) {
+    while (group[k] != k) k = group[k] = group[group[k]];
+    return k;
+  };
+  std::vector<int> want(n, -1);  // the stage a rolled corner asks of a chain (-1: none)
+  std::vector<Vec3> asked_at(n);
+  auto ask = [&](size_t k, int stage, const Vec3& at) {
+    if (want[k] >= 0 && want[k] != stage)
+      throw RoundingError(ErrorCode::CornerNotBlendable, "the chain picked at " + format_point(picked[k]) + " is rounded after the others at " +
+                          format_point(stage ? at : asked_at[k]) + " but before them at " + format_point(stage ? asked_at[k] : at) +
+                          ": such corners are not made together yet (round them in two calls)");
+    want[k] = stage, asked_at[k] = at;
+  };
+  for (const auto& [v, ids] : ending) {
+    if (ids.size() == 3) {
+      int sign[3];
+      Vec3 normals[2];
+      for (int i = 0; i < 3; ++i) sign[i] = convexity_at(input, chains[ids[i]], v, normals);
+      const int sum = sign[0] + sign[1] + sign[2];
+      if (sign[0] && sign[1] && sign[2] && std::abs(sum) == 1) {  // two of one convexity, one of the other
+        const int odd = sign[0] != sign[1] ? (sign[0] != sign[2] ? 0 : 1) : 2;
+        RolledCorner c;
+        c.vertex = input.point(v), c.odd = ids[size_t(odd)], c.odd_convex = sign[odd] > 0;
+        c.pair = {ids[size_t((odd + 1) % 3)], ids[size_t((odd + 2) % 3)]};
+        if (!opt.radius_law.empty())
+          throw RoundingError(ErrorCode::CornerNotBlendable, "the chains picked at and around " + format_point(picked[c.odd]) + " meet at " +
+                              format_point(c.vertex) + ": variable radii into a corner are not blended yet");
+        ask(c.odd, 0, c.vertex), ask(c.pair[0], 1, c.vertex), ask(c.pair[1], 1, c.vertex);
+        rolled->push_back(c);
+        continue;
+      }
+    }
+    for (size_t i = 1; i < ids.size(); ++i) group[root(ids[i])] = root(ids[0]);
+  }
+  std::map<size_t, std::pair<int, size_t>> group_stage;  // group -> (stage, the chain that asked it)
+  for (size_t k = 0; k < n; ++k) {
+    if (want[k] < 0) continue;
+    const auto [it, fresh] = group_stage.insert({root(k), {want[k], k}});
+    if (!fresh && it->second.first != want[k]) {
+      const size_t j = it->second.second;
+      throw RoundingError(ErrorCode::CornerNotBlendable, "the chains picked at " + format_point(picked[k]) + " and " + format_point(picked[j]) +
+                          " meet at corners, but one is rounded before and the other after its neighbours (at " + format_point(asked_at[k]) +
+                          " and " + format_point(asked_at[j]) + "): such corners are not made together yet (round them in two calls)");
+    }
+  }
+  std::vector<int> stage(n, 0);
+  for (size_t k = 0; k < n; ++k) {
+    const auto it = group_stage.find(root(k));
+    if (it != group_stage.end()) stage[k] = it->second.first;
+  }
+  return stage;
+}
 
 // The corners where picked chains meet: a vertex where exactly two of them end is blended by a miter, as
 // OCCT blends two rounds meeting where a third edge stays sharp: both rounds run on to the plane through

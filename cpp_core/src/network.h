@@ -2,6 +2,7 @@
 // round ends there -- a mitre between two rounds, or the plane across the chain through the ball of a
 // sphere corner (sphere_corner.h) between three.
 #pragma once
+#include <array>
 #include <utility>
 #include <vector>
 
@@ -23,10 +24,30 @@ struct CornerEnd {
 struct NetworkPart {
   std::vector<CornerEnd> corners;
   std::vector<Vec3> earlier_round_points;
+  const std::vector<SharpChain>* chains = nullptr;  // all chains of the call (on the input), when several
 };
 
 // The corner at a chain end (its end vertex is the corner's point), or null.
 const CornerEnd* corner_at(const NetworkPart& net, const Vec3& end_point);
+
+// Where three picked chains end at one vertex with convex and concave edges mixed -- a pocket's rim
+// corner: two convex rim edges and the concave wall edge between them -- the rolling ball makes the odd
+// chain's round first, and the other two then as one round rolling on around its end (a torus where the
+// faces are square, as in OCCT's fillet). round_edges makes the odd chains in a first call and traces
+// the others anew on its result, where the sharp edge runs on around the odd round's end (stages.h).
+struct RolledCorner {
+  Vec3 vertex;
+  size_t odd = 0;                    // the chain of the other convexity, rounded first
+  std::array<size_t, 2> pair{0, 0};  // rounded after it, as one round
+  bool odd_convex = false;
+};
+
+// Each chain's stage: 0 made first, 1 made on stage 0's result (RolledCorner, one entry per such vertex
+// into `rolled`). Chains meeting at a mitre or a sphere corner share a stage. Refuses
+// (corner_not_blendable, naming the vertices) a chain that would have to be made both before and after
+// its neighbours, and variable radii into a rolled corner.
+std::vector<int> plan_stages(const MeshTopology& input, const std::vector<SharpChain>& chains, const std::vector<Vec3>& picked,
+                             const RoundOptions& opt, std::vector<RolledCorner>* rolled);
 
 // Each chain's corners with the others (chains traced on `input`, `picked` their seeds), and the sphere
 // corners with a chain that ends at each. Refuses (corner_not_blendable, naming the vertex) what is not

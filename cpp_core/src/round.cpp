@@ -10,9 +10,11 @@
 #include "delta.h"
 #include "corner_report.h"
 #include "ends.h"
+#include "facet_quality.h"
 #include "guard.h"
 #include "network.h"
 #include "sphere_corner.h"
+#include "stages.h"
 #include "meshround/cancel.h"
 #include "meshround/radius_law.h"
 #include "meshround/improve.h"
@@ -236,34 +238,11 @@ void check_base_meshes(const MeshTopology& mesh, const BaseMeshes& base) {
       }
 }
 
-double smallest_angle_deg(const Vec3& a, const Vec3& b, const Vec3& c) { return smallest_angle(a, b, c) * 180 / M_PI; }
-
 // The reach factors (times the one asked for) tried when a chain's new facets have an angle under
-// kThinDeg that no input facet explains: a cut CAD facet far larger than the reach leaves only a strip
-// between the trim line and the reach for grading from the round's spacing to the facet's far corners.
-constexpr double kThinDeg = 10;
+// kThinDeg (facet_quality.h) that no input facet explains: a cut CAD facet far larger than the reach
+// leaves only a strip between the trim line and the reach for grading from the round's spacing to the
+// facet's far corners.
 constexpr double kWiderReaches[] = {1.25, 1.5, 2, 3};
-
-// Facets made (or kept with a vertex snapped onto a trim line) against the input facets they replace:
-// how many are under kThinDeg; their smallest angle and the replaced input facets' (degrees) out.
-int count_thin_facets(const MeshTopology& mesh, const MeshEdit& edit, double* min_new, double* min_input) {
-  int thin = 0;
-  auto made = [&](const Vec3& a, const Vec3& b, const Vec3& c) {
-    const double angle = smallest_angle_deg(a, b, c);
-    *min_new = std::min(*min_new, angle);
-    return angle < kThinDeg;
-  };
-  for (const auto& f : edit.added) thin += made(edit.point(f[0]), edit.point(f[1]), edit.point(f[2]));
-  for (int f : edit.removed) *min_input = std::min(*min_input, smallest_angle_deg(mesh.corner(f, 0), mesh.corner(f, 1), mesh.corner(f, 2)));
-  for (const auto& snapped : edit.moved)
-    for (const int* f = mesh.facets_begin(snapped.first); f != mesh.facets_end(snapped.first); ++f) {
-      if (edit.removed.count(*f)) continue;
-      const int a = mesh.F(*f, 0), b = mesh.F(*f, 1), c = mesh.F(*f, 2);
-      thin += made(edit.point(a), edit.point(b), edit.point(c));
-      *min_input = std::min(*min_input, smallest_angle_deg(mesh.corner(*f, 0), mesh.corner(*f, 1), mesh.corner(*f, 2)));
-    }
-  return thin;
-}
 
 // Where a chain is picked again on the mesh its round is made on: the middle of one of its edges, and that
 // edge's ends in this mesh (or -1: the mesh's facets are searched for it).
@@ -405,7 +384,7 @@ RoundedChain round_one_chain(const MeshTopology& mesh, const ChainSeed& seed, co
   if (round_points)
     for (int v : round_vertices) round_points->push_back(edit.point(v));
   timer.done("improve");
-  check_result(edit, chain, reach, tol);  // refuses a result worse than its input (guard.h)
+  check_result(edit, chain, reach, tol, net.chains);  // refuses a result worse than its input (guard.h)
   timer.done("check");
   if (delta) *delta = delta_from_edit(edit);  // a probe only counts thin facets (below)
   timer.done("write");
@@ -453,37 +432,6 @@ RoundedChain round_one_chain(const MeshTopology& mesh, const ChainSeed& seed, co
   if (rep.reach_for_room > 0) report.thin_facets_short_of_room += rep.thin_facets;
   report.reach_for_room = std::max(report.reach_for_room, rep.reach_for_room);
   return out;
-}
-
-// The thin facets (and the smallest angle) among the result's facets that are not the input's, counted
-// anew after a pass that replaces facets the rounds made (the sphere corners' patches). Only facets with
-// a corner in the box [lo, hi] are looked at: every made facet has one there (the output check's reach).
-void recount_new_facets(const Points& V, const Triangles& F, const Points& out_V, const Triangles& out_F, const Vec3& lo,
-                        const Vec3& hi, RoundReport& report) {
-  auto near = [&](const Points& P, const Triangles& T, Eigen::Index f) {
-    for (int k = 0; k < 3; ++k) {
-      const Vec3 p = P.row(T(f, k)).transpose();
-      if (!(p.array() < lo.array()).any() && !(p.array() > hi.array()).any()) return true;
-    }
-    return false;
-  };
-  auto corners = [](const Points& P, const Triangles& T, Eigen::Index f) {
-    std::array<std::array<double, 3>, 3> c;
-    for (int k = 0; k < 3; ++k) c[k] = {P(T(f, k), 0), P(T(f, k), 1), P(T(f, k), 2)};
-    std::rotate(c.begin(), std::min_element(c.begin(), c.end()), c.end());
-    return c;
-  };
-  std::set<std::array<std::array<double, 3>, 3>> input;
-  for (Eigen::Index f = 0; f < F.rows(); ++f)
-    if (near(V, F, f)) input.insert(corners(V, F, f));
-  int thin = 0;
-  double smallest = 180;
-  for (Eigen::Index f = 0; f < out_F.rows(); ++f) {
-    if (!near(out_V, out_F, f) || input.count(corners(out_V, out_F, f))) continue;
-    const double a = smallest_angle_deg(out_V.row(out_F(f, 0)).transpose(), out_V.row(out_F(f, 1)).transpose(), out_V.row(out_F(f, 2)).transpose());
-    thin += a < kThinDeg, smallest = std::min(smallest, a);
-  }
-  report.thin_facets = thin, report.min_new_angle_deg = smallest;
 }
 
 }  // namespace
@@ -539,6 +487,21 @@ RoundResult round_edges(const Points& V, const Triangles& F, const std::vector<V
     picked.push_back(seed);
     chains.push_back(std::move(c));
   }
+  auto finished = [&](RoundResult& result) {
+    RoundReport& rep = result.report;
+    rep.input_forces_small_angles = rep.min_new_angle_deg < 10 && rep.min_input_angle_deg < 10;
+    rep.seconds_total = std::chrono::duration<double>(Clock::now() - start).count();
+    return std::move(result);
+  };
+  // Convex and concave chains mixed at a corner: the odd ones first, the others on their result (stages.h).
+  std::vector<RolledCorner> rolled;
+  const std::vector<int> stage = plan_stages(input, chains, picked, opt, &rolled);
+  if (!rolled.empty()) {
+    std::vector<Vec3> again;
+    for (const ChainSeed& s : chain_seeds) again.push_back(s.point);
+    result = round_in_stages(V, F, chains, again, stage, rolled, opt);
+    return finished(result);
+  }
   const std::vector<RoundOptions> chain_options = options_per_chain(opt, chains, picked);
   std::vector<std::pair<SphereCorner, size_t>> spheres;  // each with a chain that ends there
   std::vector<NetworkPart> network = find_corners(input, chains, picked, opt, &spheres);
@@ -563,6 +526,7 @@ RoundResult round_edges(const Points& V, const Triangles& F, const std::vector<V
   for (size_t k = 0; k < chain_seeds.size(); ++k) {
     poll_cancel();
     NetworkPart& net = network[k];
+    if (chains.size() > 1) net.chains = &chains;
     if (std::any_of(net.corners.begin(), net.corners.end(), [](const CornerEnd& c) { return c.other_made || c.sphere; }))
       net.earlier_round_points = made_points;
     std::vector<Vec3>* keep = network.size() > 1 && !net.corners.empty() ? &made_points : nullptr;
@@ -595,17 +559,15 @@ RoundResult round_edges(const Points& V, const Triangles& F, const std::vector<V
       for (const Vec3& p : chains[k].points) lo = lo.cwiseMin(p), hi = hi.cwiseMax(p);
       reach = std::max(reach, chain_options[k].reach * chain_options[k].max_radius());
     }
-    recount_new_facets(V, F, cur_V, cur_F, lo.array() - 2 * reach, hi.array() + 2 * reach, result.report);
+    recount_new_facets(V, F, cur_V, cur_F, lo.array() - 2 * reach, hi.array() + 2 * reach, &result.report.thin_facets,
+                       &result.report.min_new_angle_deg);
     std::vector<double> radii;
     for (const RoundOptions& o : chain_options) radii.push_back(o.max_radius());
     result.report.corners = report_corners(cur_V, cur_F, network, spheres, result.chains, radii);
   }
   if (opt.write_arrays) apply_delta(V, F, delta, result.vertices, result.triangles);
   result.delta = std::move(delta);
-  RoundReport& rep = result.report;
-  rep.input_forces_small_angles = rep.min_new_angle_deg < 10 && rep.min_input_angle_deg < 10;
-  rep.seconds_total = std::chrono::duration<double>(Clock::now() - start).count();
-  return result;
+  return finished(result);
 }
 
 }  // namespace meshround

@@ -222,6 +222,14 @@ RoundMeshStats mesh_rounding_surface(const RoundingSurface& surface, const std::
   std::vector<Vec3> inner;
   std::vector<std::array<RowPoint, 3>> tris;
   auto position = [&](const RowPoint& p) { return p.id >= 0 ? edit.point(p.id) : inner[-1 - p.id]; };
+  // An end column lies on its end face's plane (a capped end: the trim lines' offsets within that plane
+  // only) or is the exact end profile (a mitre's, shared with the other round's).
+  auto end_offset = [&](int end, double u, double v) -> Vec3 {
+    if (shared.exact_end[end]) return Vec3::Zero();
+    const Vec3 d = offsets.at(u, v);
+    const EndCut& cut = (end ? stations.back() : stations.front()).cut;
+    return cut.active ? Vec3(d - cut.normal * d.dot(cut.normal)) : d;
+  };
   RoundMeshStats stats;
   for (int round = 0; round < 8; ++round) {
     inner.clear();
@@ -237,7 +245,7 @@ RoundMeshStats mesh_rounding_surface(const RoundingSurface& surface, const std::
           break;
         }
         const bool end = !surface.closed && (i == 0 || i + 1 == samples.size());
-        const Vec3 p = surface.value(samples[i], v) + (end && shared.exact_end[i == 0 ? 0 : 1] ? Vec3::Zero() : offsets.at(samples[i], v));
+        const Vec3 p = surface.value(samples[i], v) + (end ? end_offset(i == 0 ? 0 : 1, samples[i], v) : offsets.at(samples[i], v));
         if (end && shared.at[i == 0 ? 0 : 1]) {  // the other round's vertex at this corner
           const int id = shared.vertex_at(p);
           if (id < 0)

@@ -149,6 +149,26 @@ def pocket_rim_square(draft_deg=0.0):
     return build
 
 
+def pocket_rim_walls(draft_deg=0.0):
+    """The rim of a rectangular pocket and the pocket's four wall corners: at each rim corner two convex
+    rounds meet a concave one; OCCT rounds the wall corner and rolls the rim on around its top (a torus
+    where the walls are square)."""
+    def build():
+        s = pocket_block(draft_deg)
+        inside = edges_where(s, lambda p: 19 < p.x < 61 and 14 < p.y < 46 and p.z > 17.9)
+        return s, [e for e in inside if max(v.Point.z for v in e.Vertexes) > 18.5]
+    return build
+
+
+def pocket_all(draft_deg=0.0):
+    """Every edge of a rectangular pocket: the rim, the wall corners and the floor (at the floor's corners
+    three concave rounds meet in a sphere)."""
+    def build():
+        s = pocket_block(draft_deg)
+        return s, edges_where(s, lambda p: 19 < p.x < 61 and 14 < p.y < 46 and p.z > 17.9)
+    return build
+
+
 def box_oblique_end():
     """A box edge ending at an end face at 45 degrees to it (a convex end): the top back edge of a 60 x 40
     x 30 box whose right end is cut off along x + y = 100."""
@@ -399,6 +419,8 @@ SPECS = {
     "box_oblique_end": (box_oblique_end, 4.0, None),
     "pocket_rim_square": (pocket_rim_square(), 2.0, None),
     "pocket_rim_draft": (pocket_rim_square(10.0), 2.0, None),
+    "pocket_rim_walls": (pocket_rim_walls(), 2.0, None),
+    "pocket_rim_walls_draft": (pocket_rim_walls(10.0), 2.0, None),
     "box_corner": (box_corner, 5.0, None),
     "box_top_corner": (box_top_corner, 5.0, None),
     "box_var": (box, None, [(0.0, 2.0), (1.0, 8.0)]),

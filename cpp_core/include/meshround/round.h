@@ -6,8 +6,11 @@
 //     -> improve_new_facets -> check_result (guard.h) -> the result as an edit of the input (mesh_delta.h)
 //
 // Chains are rounded one after the other, each on the result of the previous one. Where two of them end
-// at one vertex, their rounds are mitred (find_corners in round.cpp): both stop at the plane bisecting
-// the chains there, the second taking the first's vertices for its end; other corners are refused
+// at one vertex, their rounds are mitred (network.h find_corners): both stop at the plane bisecting
+// the chains there, the second taking the first's vertices for its end; where three of one convexity
+// end there, the ball touching their faces is the corner (sphere_corner.h); where three of mixed
+// convexity do, the odd one is made first and the other two are traced again on its result, rolling on
+// around its end as one round (network.h RolledCorner, stages.h). Other corners are refused
 // (corner_not_blendable, naming the vertex). A radius law is split among the chains, each control point
 // going to the chain nearest to it.
 #pragma once
@@ -54,10 +57,13 @@ struct RoundedChain {
 struct CornerReport {
   Vec3 vertex;                // where the chains meet
   std::string kind;           // "mitre": two rounds meeting on the plane halving the chains' angle, a crease as in
-                              // OCCT's fillet; "sphere": three rounds and the ball touching their three faces
-  std::vector<int> chains;    // the rounds meeting there (RoundResult::chains)
+                              // OCCT's fillet; "sphere": three rounds and the ball touching their three faces;
+                              // "rolled": convex and concave mixed -- the odd round first, the other two as one
+                              // round rolling on around its end (a torus where the faces are square)
+  std::vector<int> chains;    // the rounds meeting there (RoundResult::chains); rolled: the odd one, the rolled one
   double radius = 0;
-  int seam_vertices = 0;      // the mesh vertices on the seams (the mitre curve; the patch's three arcs)
+  int seam_vertices = 0;      // the mesh vertices on the seams (the mitre curve; the patch's three arcs; where the
+                              // rolled round leans on the odd one)
   double deviation = 0;       // mm: the seams' (and a sphere patch's facets') largest distance from the exact surfaces
   double normal_jump_deg = 0; // largest angle between the exact normals of the surfaces meeting at a seam vertex:
                               // 0 where they join tangentially (G1: a sphere patch), a mitre's crease otherwise

@@ -1,0 +1,84 @@
+#include "stages.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "corner_report.h"
+#include "delta.h"
+#include "facet_quality.h"
+
+namespace meshround {
+namespace {
+
+// The report of both stages as one (their corners' chain numbers into `offset` + the second's); facet
+// counts from the edit of the input, thin facets counted again over the result.
+RoundReport merge_reports(const RoundReport& a, const RoundReport& b, int offset) {
+  RoundReport m = a;
+  m.max_deviation = std::max(a.max_deviation, b.max_deviation);
+  m.min_input_angle_deg = std::min(a.min_input_angle_deg, b.min_input_angle_deg);
+  m.thin_facets_short_of_room = a.thin_facets_short_of_room + b.thin_facets_short_of_room;
+  m.reach_for_room = std::max(a.reach_for_room, b.reach_for_room);
+  for (CornerReport c : b.corners) {
+    for (int& k : c.chains) k += offset;
+    m.corners.push_back(c);
+  }
+  for (const auto& [pass, t] : b.seconds) m.seconds[pass] += t;
+  return m;
+}
+
+// The round of `rounds` (from `first` on) whose sharp edge passes nearest to p.
+int nearest_round(const std::vector<RoundedChain>& rounds, size_t first, const Vec3& p) {
+  int best = -1;
+  double best_d = INFINITY;
+  for (size_t k = first; k < rounds.size(); ++k)
+    for (const Vec3& q : rounds[k].chain)
+      if ((q - p).norm() < best_d) best_d = (q - p).norm(), best = int(k);
+  return best;
+}
+
+}  // namespace
+
+RoundResult round_in_stages(const Points& V, const Triangles& F, const std::vector<SharpChain>& chains, const std::vector<Vec3>& seeds,
+                            const std::vector<int>& stage, const std::vector<RolledCorner>& rolled, const RoundOptions& opt) {
+  std::vector<Vec3> picks[2];
+  std::vector<int> index_in_first(chains.size(), -1);
+  for (size_t k = 0; k < chains.size(); ++k) {
+    if (stage[k] == 0) index_in_first[k] = int(picks[0].size());
+    picks[stage[k]].push_back(seeds[k]);
+  }
+  RoundOptions with_arrays = opt;
+  with_arrays.write_arrays = true;  // the second stage starts from the first's mesh
+  const RoundResult a = round_edges(V, F, picks[0], with_arrays);
+  const RoundResult b = round_edges(a.vertices, a.triangles, picks[1], with_arrays);
+
+  RoundResult out;
+  Points V1;
+  Triangles F1;
+  StepOrigin origin;
+  apply_delta(V, F, a.delta, V1, F1, &origin);
+  out.delta = delta_through(V, F, V1, F1, origin, b.delta);
+  apply_delta(V, F, out.delta, out.vertices, out.triangles);
+  out.chains = a.chains;
+  out.chains.insert(out.chains.end(), b.chains.begin(), b.chains.end());
+  const int offset = int(a.chains.size());
+  out.report = merge_reports(a.report, b.report, offset);
+  out.report.facets_removed = int(out.delta.removed.size());
+  out.report.facets_added = int(out.delta.added.size());
+  // Thin facets among the made ones, over both stages (the second replaces facets the first made).
+  Vec3 lo = Vec3::Constant(INFINITY), hi = Vec3::Constant(-INFINITY);
+  for (const SharpChain& c : chains)
+    for (const Vec3& p : c.points) lo = lo.cwiseMin(p), hi = hi.cwiseMax(p);
+  const double reach = 2 * opt.reach * opt.max_radius();
+  recount_new_facets(V, F, out.vertices, out.triangles, lo.array() - reach, hi.array() + reach, &out.report.thin_facets,
+                     &out.report.min_new_angle_deg);
+  for (const RolledCorner& c : rolled) {
+    const int odd = index_in_first[c.odd], round = nearest_round(out.chains, size_t(offset), c.vertex);
+    if (odd >= 0 && round >= 0)
+      out.report.corners.push_back(report_rolled_corner(out.vertices, out.triangles, c, out.chains[size_t(odd)], out.chains[size_t(round)],
+                                                        opt.max_radius(), odd, round));
+  }
+  if (!opt.write_arrays) out.vertices.resize(0, 3), out.triangles.resize(0, 3);
+  return out;
+}
+
+}  // namespace meshround

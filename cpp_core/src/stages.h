@@ -1,0 +1,18 @@
+// Networks with rolled corners (network.h RolledCorner), made in two stages by round_edges itself: the
+// odd chains (and the chains that meet them at mitres and sphere corners) in a first call, the others in
+// a second call on its result, traced anew from the middles of their edges -- where they met the odd
+// round's chain, their sharp edge now runs on around that round's end, so two chains of the input become
+// one round there. The two calls' edits are one edit of the input, their reports one report.
+#pragma once
+#include <vector>
+
+#include "meshround/round.h"
+#include "network.h"
+
+namespace meshround {
+
+// `seeds[k]` picks chain k again (the middle of one of its edges), `stage[k]` is plan_stages' stage.
+RoundResult round_in_stages(const Points& V, const Triangles& F, const std::vector<SharpChain>& chains, const std::vector<Vec3>& seeds,
+                            const std::vector<int>& stage, const std::vector<RolledCorner>& rolled, const RoundOptions& opt);
+
+}  // namespace meshround

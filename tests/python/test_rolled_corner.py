@@ -1,0 +1,79 @@
+"""Corners where convex and concave rounds meet: a pocket's rim picked together with the pocket's wall
+corners (and its floor). OCCT's fillet of those edges rounds each wall corner and rolls the rim on around
+its top -- a torus where the walls are square -- and meets the floor's rounds in a sphere. MeshRound makes
+the wall corners first and traces the rim again on their result, where it runs on around them as one
+closed chain.
+
+Expectations come from the CAD solid: its rim vertices are the rolled corners, its floor vertices the
+sphere corners, and OCCT's fillet of the same edges is the surface the result is scored against both
+ways (reference.py). The corner report's bars are the engine's own tolerance, r / 100, and the turn a
+round's facets make at that tolerance."""
+import math
+
+import pytest
+
+import cases
+import MeshPart
+import reference
+
+import MeshRound
+
+R = 2.0
+TOL = R / 100
+# The rolled round leans on the wall corner's facets (chords within the tolerance of its exact surface),
+# not on that surface itself: its normal there is the facet's, within half a facet's turn of the exact one.
+FACET_TURN_DEG = 2 * math.degrees(math.acos(1 - TOL / R))  # 16.2 deg at r / 100
+
+
+def edge_middles(edges):
+    return [e.valueAt(0.5 * (e.FirstParameter + e.LastParameter)) for e in edges]
+
+
+def pocket_vertices(solid, z):
+    return sorted((round(v.Point.x, 3), round(v.Point.y, 3)) for v in solid.Vertexes
+                  if abs(v.Point.z - z) < 1e-6 and 19 < v.Point.x < 61 and 14 < v.Point.y < 46)
+
+
+@pytest.mark.parametrize("draft, element", [(0.0, 1.0), (10.0, 0.8), (0.0, 5.0)])
+def test_the_rim_rolls_on_around_each_wall_corner(draft, element):
+    solid, edges = cases.pocket_rim_walls(draft)()
+    assert len(edges) == 8
+    mesh = MeshPart.meshFromShape(Shape=solid, MaxLength=element)
+    before = mesh.Topology
+    res = MeshRound.round_edges(mesh, edge_middles(edges), R)
+    assert mesh.Topology == before
+    out = res.mesh
+    assert out.isSolid() and not out.hasNonManifolds() and not out.hasSelfIntersections()
+    rolled = [c for c in res.report["corners"] if c["kind"] == "rolled"]
+    assert sorted((round(c["vertex"][0], 3), round(c["vertex"][1], 3)) for c in rolled) == pocket_vertices(solid, 30)
+    per_chain = res.report["per_chain"]
+    assert len(per_chain) == 5  # four wall corners, then the rim as one round
+    rim = {c["chains"][1] for c in rolled}
+    assert len(rim) == 1 and per_chain[rim.pop()]["closed"]
+    assert sorted(c["chains"][0] for c in rolled) == [0, 1, 2, 3]
+    for c in rolled:
+        assert c["seam_vertices"] >= 5, c
+        assert c["deviation"] <= TOL, c
+        assert c["normal_jump_deg"] <= FACET_TURN_DEG / 2, c
+        assert c["seam_turn_deg"] <= FACET_TURN_DEG, c
+
+
+@pytest.mark.parametrize("draft", [0.0, 10.0])
+def test_a_whole_pocket_rounds_like_occt_on_a_fine_mesh(draft):
+    """Rim, wall corners and floor: 12 edges in one call, against OCCT's fillet of the 12 edges."""
+    case = cases.Case("pocket_all", cases.pocket_all(draft), R)
+    assert len(case.chain) == 12
+    mesh = case.mesh("fine")  # elements 0.4 r
+    res = MeshRound.round_edges(mesh, case.seeds, R, tolerance=TOL)
+    row = reference.score(case, mesh, res.mesh, res.report)
+    assert row["dev_out_to_ref"] <= reference.allowed_deviation(row), row
+    assert row["dev_ref_to_out"] <= reference.allowed_deviation(row), row
+    assert row["boundary_edges_out"] == row["boundary_edges_in"] == 0
+    assert (row["nonmanifold_edges"], row["misoriented_edges"], row["degenerate_facets"]) == (0, 0, 0)
+    assert row["orientation_kept"] and not row["self_intersections"]
+    assert row["far_vertices_lost"] == row["far_facets_lost"] == row["far_facets_added"] == 0
+    kinds = {}
+    for c in res.report["corners"]:
+        kinds.setdefault(c["kind"], []).append((round(c["vertex"][0], 3), round(c["vertex"][1], 3)))
+    assert sorted(kinds["rolled"]) == pocket_vertices(case.solid, 30)
+    assert sorted(kinds["sphere"]) == pocket_vertices(case.solid, 18)
