@@ -1,13 +1,14 @@
 """FreeCAD GUI macro: corners of rounds made in one call, as a PNG: a rectangular pocket's rim with its
-corners mitred (scene pocket_rim, the default), or a box corner with its three edges rounded, meeting in
-the corner ball (scene box_corner), or two of them (the top edges) mitred, the third edge left sharp
-(scene box_top_corner).
+corners mitred (scene pocket_rim, the default); every edge of that pocket, the rim rolling on around the
+rounded wall corners and the floor's corners spheres (scene pocket_all); a box corner with its three
+edges rounded, meeting in the corner ball (scene box_corner), or two of them (the top edges) mitred, the
+third edge left sharp (scene box_top_corner).
 
     QTWEBENGINE_CHROMIUM_FLAGS=--no-sandbox xvfb-run -a -s "-screen 0 1600x1200x24" freecad resources/pocket_render.py
     MESHROUND_SCENE=box_corner QTWEBENGINE_CHROMIUM_FLAGS=--no-sandbox xvfb-run -a -s "-screen 0 1600x1200x24" freecad resources/pocket_render.py
 
 pocket_rim: an 80 x 60 x 30 block with a 40 x 30, 12 deep pocket (MeshPart, elements 0.8 mm), its four rim
-edges rounded with r = 2 mm (one seed on each). box_corner: a 100 x 60 x 40 box (elements 2 mm), the three
+edges rounded with r = 2 mm (one seed on each); pocket_all: all twelve of its edges. box_corner: a 100 x 60 x 40 box (elements 2 mm), the three
 edges at (100, 60, 40) rounded with r = 5 mm (box_top_corner: its two top edges there). Each is rendered twice: the whole part, and a close-up of a
 corner with its facets, the new facets in orange. Writes resources/images/<scene>.png (or $POCKET_PNG).
 FreeCAD quits when done (also on error).
@@ -36,6 +37,10 @@ SCENES = {
     "pocket_rim": (lambda: Part.makeBox(80, 60, 30).cut(Part.makeBox(40, 30, 13, V(20, 15, 18))).removeSplitter(), 0.8,
                    [V(40, 15, 30), V(60, 30, 30), V(40, 45, 30), V(20, 30, 30)], 2.0,
                    [((-0.6, 1.0, -1.1), None, None, False), ((1.0, -1.0, -0.9), (60.0, 15.0, 28.5), 10.0, True)]),
+    "pocket_all": (lambda: Part.makeBox(80, 60, 30).cut(Part.makeBox(40, 30, 13, V(20, 15, 18))).removeSplitter(), 0.8,
+                   [V(40, 15, 30), V(60, 30, 30), V(40, 45, 30), V(20, 30, 30), V(20, 15, 24), V(60, 15, 24), V(60, 45, 24),
+                    V(20, 45, 24), V(40, 15, 18), V(60, 30, 18), V(40, 45, 18), V(20, 30, 18)], 2.0,
+                   [((-0.6, 1.0, -1.1), None, None, False), ((1.0, -0.8, -0.7), (59.0, 16.0, 24.0), 16.0, True)]),
     "box_corner": (lambda: Part.makeBox(100, 60, 40), 2.0, [V(50, 60, 40), V(100, 30, 40), V(100, 60, 20)], 5.0,
                    [((-1.0, -1.1, -0.8), None, None, False), ((-1.0, -1.0, -1.0), (97.0, 57.0, 37.0), 16.0, True)]),
     "box_top_corner": (lambda: Part.makeBox(100, 60, 40), 2.0, [V(50, 60, 40), V(100, 30, 40)], 5.0,
