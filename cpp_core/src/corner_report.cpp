@@ -189,10 +189,10 @@ CornerReport report_rolled_corner(const Points& V, const Triangles& F, const Rol
   CornerReport c;
   c.vertex = corner.vertex, c.kind = "rolled", c.chains = {odd_index, rolled_index}, c.radius = radius;
   const double r = radius, s = corner.odd_convex ? 1 : -1;
-  // The rolled round's balls near the vertex that lean on the odd round (their contact on it): at each,
-  // how far the contact lies from the odd round's exact surface, and the angle between the two outward
-  // normals there -- the balls touch from either side of the surface, one in the solid and one outside,
-  // so those are s (p - odd centre) and s (rolled centre - p), s = +1 when the odd round is convex.
+  // The rolled round's balls near the vertex that lean on the odd round (their contact on it): the angle
+  // between the two outward normals at the contact -- the balls touch from either side of the surface,
+  // one in the solid and one outside, so those are s (p - odd centre) and s (rolled centre - p), s = +1
+  // when the odd round is convex.
   int side = -1;
   for (size_t i = 0; i < rolled.spine.size(); ++i)
     for (int k = 0; k < 2; ++k) {
@@ -201,20 +201,21 @@ CornerReport report_rolled_corner(const Points& V, const Triangles& F, const Rol
       const OnRound o = on_round(odd, r, p);
       if (!o.on_arc || o.misfit > kOnSurfaceShare * r) continue;
       side = k;
-      c.deviation = std::max(c.deviation, o.misfit);
       c.normal_jump_deg = std::max(c.normal_jump_deg, angle_deg(s * (p - o.centre), s * (rolled.spine[i] - p)));
     }
   if (side < 0) return c;
-  // The mesh's seam: its vertices on the odd round along that contact line; the turn across its edges.
+  // The mesh's seam: its vertices on the odd round along that contact line, their distance (and the seam
+  // edges' middles') from the odd round's exact surface, and the turn across the seam edges.
   std::vector<char> seam(size_t(V.rows()), 0);
+  auto misfit = [&](const Vec3& p) { return on_round(odd, r, p).misfit; };
   for (Eigen::Index v = 0; v < V.rows(); ++v) {
     const Vec3 p = V.row(v);
     if ((p - corner.vertex).norm() > 4 * r) continue;
     const OnRound o = on_round(odd, r, p);
     if (o.on_arc && o.misfit <= kOnSurfaceShare * r && (at(rolled.contacts[side], nearest_on(rolled.contacts[side], p)) - p).norm() <= kOnSurfaceShare * r)
-      seam[size_t(v)] = 1, ++c.seam_vertices;
+      seam[size_t(v)] = 1, ++c.seam_vertices, c.deviation = std::max(c.deviation, o.misfit);
   }
-  seam_edges(V, F, seam, [](const Vec3&) {}, c);
+  seam_edges(V, F, seam, [&](const Vec3& middle) { c.deviation = std::max(c.deviation, misfit(middle)); }, c);
   return c;
 }
 

@@ -8,6 +8,7 @@
 
 #include "meshround/chain.h"
 #include "meshround/options.h"
+#include "meshround/spine.h"
 #include "sphere_corner.h"
 
 namespace meshround {
@@ -25,6 +26,7 @@ struct NetworkPart {
   std::vector<CornerEnd> corners;
   std::vector<Vec3> earlier_round_points;
   const std::vector<SharpChain>* chains = nullptr;  // all chains of the call (on the input), when several
+  const std::vector<ExactRound>* earlier_rounds = nullptr;  // rounds of a first stage (stages.h), if any
 };
 
 // The corner at a chain end (its end vertex is the corner's point), or null.

@@ -317,7 +317,7 @@ RoundedChain round_one_chain(const MeshTopology& mesh, const ChainSeed& seed, co
   timer.done("chain");
 
   const double tol = opt.tolerance > 0 ? opt.tolerance : law.max_radius() / 100.0;
-  const BaseDistance dist_a(mesh, base.facets[0]), dist_b(mesh, base.facets[1]);
+  const BaseDistance dist_a(mesh, base.facets[0], net.earlier_rounds), dist_b(mesh, base.facets[1], net.earlier_rounds);
   const SpineContext ctx{mesh, chain, base, {&dist_a, &dist_b}};
   RoundingSurface surface;
   RoundedChain out;
@@ -461,6 +461,11 @@ std::vector<SharpChain> find_chains(const MeshTopology& mesh, const std::vector<
 }
 
 RoundResult round_edges(const Points& V, const Triangles& F, const std::vector<Vec3>& seeds, const RoundOptions& opt) {
+  return round_edges_after(V, F, seeds, opt, {});
+}
+
+RoundResult round_edges_after(const Points& V, const Triangles& F, const std::vector<Vec3>& seeds, const RoundOptions& opt,
+                              const std::vector<ExactRound>& earlier) {
   const auto start = Clock::now();
   const CancelScope cancel_scope(opt.cancelled);
   poll_cancel();  // cancelled before the call: refused at once
@@ -527,6 +532,7 @@ RoundResult round_edges(const Points& V, const Triangles& F, const std::vector<V
     poll_cancel();
     NetworkPart& net = network[k];
     if (chains.size() > 1) net.chains = &chains;
+    if (!earlier.empty()) net.earlier_rounds = &earlier;
     if (std::any_of(net.corners.begin(), net.corners.end(), [](const CornerEnd& c) { return c.other_made || c.sphere; }))
       net.earlier_round_points = made_points;
     std::vector<Vec3>* keep = network.size() > 1 && !net.corners.empty() ? &made_points : nullptr;

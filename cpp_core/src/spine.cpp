@@ -13,7 +13,33 @@ double ProfileStation::angle() const {
   return std::acos(std::clamp(a.dot(b), -1.0, 1.0));
 }
 
-BaseDistance::BaseDistance(const MeshTopology& mesh, const std::vector<int>& facets) : mesh_(mesh), facets_(facets) {
+namespace {
+
+// How near an earlier round a base facet must be to lie on it: its corners within kOnRoundShare r of the
+// round (a round's vertices lie on its lofted surface, which is within a tenth of the tolerance of the
+// balls; r / 100 leaves room for a finer or coarser tolerance), its middle within kChordShare r (a chord
+// of a round made to r / 100 sags r / 100 at most). A flat face's facet beside the round passes only
+// where it is tangent to it, which is where the two agree.
+constexpr double kOnRoundShare = 0.01, kChordShare = 0.02;
+
+// The point of a polyline nearest p (clamped to its ends).
+Vec3 nearest_on_polyline(const std::vector<Vec3>& line, const Vec3& p) {
+  Vec3 best = line.front();
+  for (size_t i = 0; i + 1 < line.size(); ++i) {
+    const Vec3 a = line[i], d = line[i + 1] - a;
+    const double t = d.squaredNorm() > 0 ? std::clamp((p - a).dot(d) / d.squaredNorm(), 0.0, 1.0) : 0.0;
+    if ((a + t * d - p).squaredNorm() < (best - p).squaredNorm()) best = a + t * d;
+  }
+  return best;
+}
+
+// p's distance from the surface of `round` (the balls' envelope), signed: > 0 outside the balls.
+double off_round(const ExactRound& round, const Vec3& p) { return (p - nearest_on_polyline(round.spine, p)).norm() - round.radius; }
+
+}  // namespace
+
+BaseDistance::BaseDistance(const MeshTopology& mesh, const std::vector<int>& facets, const std::vector<ExactRound>* rounds)
+    : mesh_(mesh), facets_(facets), rounds_(rounds && !rounds->empty() ? rounds : nullptr) {
   std::vector<Vec3> boxes;
   boxes.reserve(2 * facets.size());
   for (const int f : facets) {
@@ -21,6 +47,18 @@ BaseDistance::BaseDistance(const MeshTopology& mesh, const std::vector<int>& fac
     boxes.push_back(a.cwiseMin(b).cwiseMin(c)), boxes.push_back(a.cwiseMax(b).cwiseMax(c));
   }
   tree_ = std::make_shared<const BoxTree>(boxes);
+  if (!rounds_) return;
+  on_round_.assign(facets.size(), -1);
+  for (size_t i = 0; i < facets.size(); ++i) {
+    const Vec3 a = mesh.corner(facets[i], 0), b = mesh.corner(facets[i], 1), c = mesh.corner(facets[i], 2);
+    for (size_t k = 0; k < rounds_->size() && on_round_[i] < 0; ++k) {
+      const ExactRound& round = (*rounds_)[k];
+      const double r = round.radius;
+      if (std::abs(off_round(round, a)) <= kOnRoundShare * r && std::abs(off_round(round, b)) <= kOnRoundShare * r &&
+          std::abs(off_round(round, c)) <= kOnRoundShare * r && std::abs(off_round(round, (a + b + c) / 3)) <= kChordShare * r)
+        on_round_[i] = int(k);
+    }
+  }
 }
 
 Vec3 BaseDistance::closest(const Vec3& p, int* facet, int* region) const {
@@ -31,9 +69,17 @@ Vec3 BaseDistance::closest(const Vec3& p, int* facet, int* region) const {
   const int i = tree_->nearest(p, d2);
   if (i < 0) throw RoundingError(ErrorCode::NonManifoldInput, "a base mesh is empty near " + format_point(p));
   const int f = facets_[i];
+  if (facet) *facet = f;
+  if (rounds_ && on_round_[size_t(i)] >= 0) {  // on an earlier round: its exact surface, smooth there
+    const ExactRound& round = (*rounds_)[size_t(on_round_[size_t(i)])];
+    const Vec3 centre = nearest_on_polyline(round.spine, p), d = p - centre;
+    if (d.norm() > 1e-9 * round.radius) {
+      if (region) *region = 0;
+      return centre + round.radius * d.normalized();
+    }
+  }
   int reg;
   const Vec3 q = closest_point_on_triangle(p, mesh_.corner(f, 0), mesh_.corner(f, 1), mesh_.corner(f, 2), &reg);
-  if (facet) *facet = f;
   if (region) *region = reg;
   return q;
 }

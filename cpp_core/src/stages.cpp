@@ -49,7 +49,9 @@ RoundResult round_in_stages(const Points& V, const Triangles& F, const std::vect
   RoundOptions with_arrays = opt;
   with_arrays.write_arrays = true;  // the second stage starts from the first's mesh
   const RoundResult a = round_edges(V, F, picks[0], with_arrays);
-  const RoundResult b = round_edges(a.vertices, a.triangles, picks[1], with_arrays);
+  std::vector<ExactRound> earlier;
+  for (const RoundedChain& c : a.chains) earlier.push_back({c.spine, opt.max_radius()});  // (one constant radius: plan_stages)
+  const RoundResult b = round_edges_after(a.vertices, a.triangles, picks[1], with_arrays, earlier);
 
   RoundResult out;
   Points V1;

@@ -11,6 +11,11 @@
 
 namespace meshround {
 
+// round_edges on a mesh whose rounds `earlier` a first stage made: base facets on them are measured on
+// their exact surfaces (spine.h ExactRound), so a round rolling on around one's end is tangent to it.
+RoundResult round_edges_after(const Points& V, const Triangles& F, const std::vector<Vec3>& seeds, const RoundOptions& opt,
+                              const std::vector<ExactRound>& earlier);
+
 // `seeds[k]` picks chain k again (the middle of one of its edges), `stage[k]` is plan_stages' stage.
 RoundResult round_in_stages(const Points& V, const Triangles& F, const std::vector<SharpChain>& chains, const std::vector<Vec3>& seeds,
                             const std::vector<int>& stage, const std::vector<RolledCorner>& rolled, const RoundOptions& opt);

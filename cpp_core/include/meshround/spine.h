@@ -40,10 +40,20 @@ struct ProfileStation {
   double angle() const;         // opening angle of the profile arc (radians)
 };
 
+// A round made before in the same call, known exactly: the balls of `radius` centred on `spine` (its
+// stations' centres, a polyline; exact where the chain is straight). A base mesh that runs over such a
+// round is measured on the round itself, not on its facets (a rolled corner's second stage, stages.h).
+struct ExactRound {
+  std::vector<Vec3> spine;
+  double radius = 0;
+};
+
 // Exact closest points on one base mesh.
 class BaseDistance {
  public:
-  BaseDistance(const MeshTopology& mesh, const std::vector<int>& facets);
+  // `rounds`: the earlier rounds of the call; a base facet lying on one of them (its corners on the round,
+  // its middle within the round's chordal tolerance) is measured on that round's exact surface.
+  BaseDistance(const MeshTopology& mesh, const std::vector<int>& facets, const std::vector<ExactRound>* rounds = nullptr);
   // Closest point of the base mesh to p; `facet` and `region` (closest_point_on_triangle's code) out.
   // Exact (a bounding volume hierarchy of the facets, searched branch and bound); of equally near
   // facets, the first in `facets`.
@@ -53,6 +63,8 @@ class BaseDistance {
   const MeshTopology& mesh_;
   const std::vector<int>& facets_;
   std::shared_ptr<const BoxTree> tree_;
+  const std::vector<ExactRound>* rounds_ = nullptr;
+  std::vector<int> on_round_;  // per base facet: the round it lies on, or -1
 };
 
 struct SpineContext {
