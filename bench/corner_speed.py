@@ -1,6 +1,8 @@
 """Console-call times of a pocket rim rounded as one network (four chains, four mitred corners) against
 one of its edges alone, on two mesh sizes of the 80 x 60 x 30 block with a 40 x 30, 12 deep pocket, r = 2;
-and of a box corner's three edges (one sphere corner) against one of them, 100 x 60 x 40 box, r = 5.
+of all twelve edges of that pocket (four rolled corners at the rim, four sphere corners at the floor) at
+about 100k and 400k facets; and of a box corner's three edges (one sphere corner) against one of them,
+100 x 60 x 40 box, r = 5.
 
     /usr/bin/python3 bench/corner_speed.py      (prints the best of three calls per row)
 """
@@ -18,6 +20,8 @@ import MeshRound  # noqa: E402
 
 V = FreeCAD.Vector
 RIM = [V(40, 15, 30), V(60, 30, 30), V(40, 45, 30), V(20, 30, 30)]
+WALL_CORNERS = [V(20, 15, 24), V(60, 15, 24), V(60, 45, 24), V(20, 45, 24)]
+FLOOR = [V(40, 15, 18), V(60, 30, 18), V(40, 45, 18), V(20, 30, 18)]
 
 
 BOX_CORNER = [V(50, 60, 40), V(100, 30, 40), V(100, 60, 20)]
@@ -38,6 +42,11 @@ def main():
         mesh = MeshPart.meshFromShape(Shape=block, MaxLength=max_length)
         print(f"{mesh.CountFacets} facets: whole rim (4 chains, 4 mitres) {best_of_three(mesh, RIM):.3f} s, "
               f"one rim edge {best_of_three(mesh, RIM[:1]):.3f} s")
+    for max_length in (0.8, 0.4):
+        mesh = MeshPart.meshFromShape(Shape=block, MaxLength=max_length)
+        print(f"{mesh.CountFacets} facets: the whole pocket (12 chains: 4 rolled, 4 sphere corners) "
+              f"{best_of_three(mesh, RIM + WALL_CORNERS + FLOOR):.3f} s, rim and wall corners (8 chains, 4 rolled) "
+              f"{best_of_three(mesh, RIM + WALL_CORNERS):.3f} s")
     for max_length in (2.0, 1.0):
         mesh = MeshPart.meshFromShape(Shape=Part.makeBox(100, 60, 40), MaxLength=max_length)
         try:
