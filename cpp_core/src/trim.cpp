@@ -227,6 +227,21 @@ TrimLines trim_base_meshes(const MeshTopology& mesh, const SharpChain& chain, co
       const double past = past_end(p);
       return past > plane_slack ? std::max(d, past) : d;
     };
+    // The parameter of a point q on the contact line, searched from a few starts between u_a and u_b
+    // (first at the share w): the one whose line point is nearest q. Near a capped end the line may
+    // double back (a concave mitre's plane crosses it short of the chain's end), and a search can stop
+    // at the end, where q is level with the line but not on it.
+    auto u_on_line = [&](const Vec3& q, double u_a, double u_b, double w0) {
+      double u = u_a, best = INFINITY;
+      for (double w : {w0, 0.0, 1.0, 0.25, 0.75}) {
+        double u_try = u_a + wrapped_delta(surface, u_a, u_b) * w;
+        line_distance(q, u_try, &u_try);
+        const double off = (surface.value(u_try, side) - q).norm();
+        if (off < best) best = off, u = u_try;
+        if (off <= plane_slack + 1e-9 * surface.u_last) break;
+      }
+      return u;
+    };
     std::unordered_set<int> plane_points;  // trim points on an end face's plane, not on the contact line
     std::unordered_map<int, VertexSide> vs;
     std::unordered_map<int, double> cut_u;  // cut point -> its line parameter
@@ -374,6 +389,7 @@ TrimLines trim_base_meshes(const MeshTopology& mesh, const SharpChain& chain, co
       if (on_plane) {
         t = std::clamp(first_crossing, 0.0, 1.0);
       }
+      if (!on_plane) u = u_on_line(pa + t * (pb - pa), vs[a].u, vs[b].u, 0.0);
       const int id = edit.add_point(pa + t * (pb - pa));
       edit.edge_point[key] = id;
       cut_u[id] = u;
@@ -494,8 +510,7 @@ TrimLines trim_base_meshes(const MeshTopology& mesh, const SharpChain& chain, co
         std::vector<int>& ids = split[edge_key(a, b)];
         for (int i = 1; i < segs; ++i) {
           const Vec3 q = pa + (pb - pa) * (double(i) / segs);
-          double u = sa.u + wrapped_delta(surface, sa.u, sb.u) * i / segs;
-          distance(q, u, &u);
+          const double u = u_on_line(q, sa.u, sb.u, double(i) / segs);
           ids.push_back(edit.add_point(q));
           out.line[side].push_back({ids.back(), u});
         }

@@ -58,13 +58,11 @@ def test_the_rim_rolls_on_around_each_wall_corner(draft, element):
         assert c["seam_turn_deg"] <= FACET_TURN_DEG, c
 
 
-@pytest.mark.parametrize("draft", [0.0, 10.0])
-def test_a_whole_pocket_rounds_like_occt_on_a_fine_mesh(draft):
-    """Rim, wall corners and floor: 12 edges in one call, against OCCT's fillet of the 12 edges."""
-    case = cases.Case("pocket_all", cases.pocket_all(draft), R)
-    assert len(case.chain) == 12
-    mesh = case.mesh("fine")  # elements 0.4 r
+def assert_like_occt(case, mesh):
+    """round_edges on case's seeds: the input intact, the result scored against OCCT's fillet both ways."""
+    before = mesh.Topology
     res = MeshRound.round_edges(mesh, case.seeds, R, tolerance=TOL)
+    assert mesh.Topology == before
     row = reference.score(case, mesh, res.mesh, res.report)
     assert row["dev_out_to_ref"] <= reference.allowed_deviation(row), row
     assert row["dev_ref_to_out"] <= reference.allowed_deviation(row), row
@@ -72,8 +70,33 @@ def test_a_whole_pocket_rounds_like_occt_on_a_fine_mesh(draft):
     assert (row["nonmanifold_edges"], row["misoriented_edges"], row["degenerate_facets"]) == (0, 0, 0)
     assert row["orientation_kept"] and not row["self_intersections"]
     assert row["far_vertices_lost"] == row["far_facets_lost"] == row["far_facets_added"] == 0
+    return res
+
+
+@pytest.mark.parametrize("draft, variant", [(0.0, "fine"), (10.0, "fine"), (0.0, "coarse"), (10.0, "coarse")])
+def test_a_whole_pocket_rounds_like_occt(draft, variant):
+    """Rim, wall corners and floor: 12 edges in one call, against OCCT's fillet of the 12 edges, on meshes
+    of elements 0.4 r and 2.5 r."""
+    case = cases.Case("pocket_all", cases.pocket_all(draft), R)
+    assert len(case.chain) == 12
+    res = assert_like_occt(case, case.mesh(variant))
     kinds = {}
     for c in res.report["corners"]:
         kinds.setdefault(c["kind"], []).append((round(c["vertex"][0], 3), round(c["vertex"][1], 3)))
     assert sorted(kinds["rolled"]) == pocket_vertices(case.solid, 30)
     assert sorted(kinds["sphere"]) == pocket_vertices(case.solid, 18)
+
+
+def pocket_floor():
+    s = cases.pocket_block()
+    return s, cases.edges_where(s, lambda p: 19 < p.x < 61 and 14 < p.y < 46 and abs(p.z - 18) < 1e-6)
+
+
+@pytest.mark.parametrize("element", [1.0, 2.0, 5.0])
+def test_a_pocket_floor_mitres_its_concave_corners(element):
+    """The floor's four edges (concave), mitred where the wall corners stay sharp. On the 2 and 5 mm meshes
+    a floor vertex lies exactly on a mitre's end profile, where the contact line doubles back."""
+    case = cases.Case("pocket_floor", pocket_floor, R)
+    assert len(case.chain) == 4
+    res = assert_like_occt(case, MeshPart.meshFromShape(Shape=case.solid, MaxLength=element))
+    assert sorted(c["kind"] for c in res.report["corners"]) == ["mitre"] * 4
