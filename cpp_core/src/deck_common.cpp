@@ -100,8 +100,10 @@ bool parse_real(std::string_view s, double& out, bool nastran) {
     out = 0.0;
     return true;
   }
-  char buf[64];
-  if (s.size() > 40) return false;
+  // At most 40 characters, each of which may gain an implied 'e' before it: 80 at most.
+  constexpr size_t kMaxChars = 40;
+  char buf[2 * kMaxChars];
+  if (s.size() > kMaxChars) return false;
   size_t n = 0;
   for (size_t i = 0; i < s.size(); ++i) {
     char c = s[i];
