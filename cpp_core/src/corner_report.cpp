@@ -129,11 +129,11 @@ CornerReport sphere_report(const Points& V, const Triangles& F, const SphereCorn
   const double r = ball.radius, slack = kOnPlaneShare * std::max(r, ball.vertex.cwiseAbs().maxCoeff() * 1e-2);
   auto on_ball = [&](const Vec3& p) { return std::abs((p - ball.centre).norm() - r) <= kOnSurfaceShare * r; };
   auto in_patch = [&](const Vec3& p) {
-    return on_ball(p) && std::all_of(ball.toward, ball.toward + 3, [&](const Vec3& t) { return (p - ball.centre).dot(t) >= -slack; });
+    return on_ball(p) && std::all_of(ball.toward.begin(), ball.toward.end(), [&](const Vec3& t) { return (p - ball.centre).dot(t) >= -slack; });
   };
   auto plane_of = [&](const Vec3& p) {  // the round whose end plane p lies on, or -1
-    for (int m = 0; m < 3; ++m)
-      if (std::abs((p - ball.centre).dot(ball.toward[m])) <= slack) return m;
+    for (size_t m = 0; m < ball.toward.size(); ++m)
+      if (std::abs((p - ball.centre).dot(ball.toward[m])) <= slack) return int(m);
     return -1;
   };
   auto on_seam = [&](const Vec3& p) { return in_patch(p) && plane_of(p) >= 0; };
@@ -179,7 +179,7 @@ std::vector<CornerReport> report_corners(const Points& V, const Triangles& F, co
     for (size_t j = 0; j < network.size(); ++j)
       for (const CornerEnd& e : network[j].corners)
         if (e.sphere && (e.point - ball.vertex).norm() <= 1e-9 * std::max(1.0, ball.vertex.cwiseAbs().maxCoeff())) ids.push_back(int(j));
-    if (ids.size() == 3) out.push_back(sphere_report(V, F, ball, ids, rounds));
+    if (ids.size() == ball.toward.size()) out.push_back(sphere_report(V, F, ball, ids, rounds));
   }
   return out;
 }

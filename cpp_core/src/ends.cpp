@@ -66,11 +66,22 @@ struct SplitMesh {
   std::vector<std::array<int, 3>> tris;
   std::vector<char> gone;
   std::unordered_map<std::uint64_t, int> edge_point;  // split edge -> its new point
+  std::unordered_map<int, std::vector<int>> pieces;   // a replaced triangle -> what replaced it
 
   int add(const Vec3& p) { points.push_back(p); return int(points.size()) - 1; }
-  void replace(int t, std::initializer_list<std::array<int, 3>> pieces) {
+  void replace(int t, std::initializer_list<std::array<int, 3>> parts) {
     gone[t] = 1;
-    for (const auto& f : pieces) tris.push_back(f), gone.push_back(0);
+    for (const auto& f : parts) pieces[t].push_back(int(tris.size())), tris.push_back(f), gone.push_back(0);
+  }
+  // The triangles that stand for t now: t itself, or what replaced it (and them), into `out`.
+  void live(int t, std::vector<int>& out) const {
+    if (!gone[size_t(t)]) {
+      out.push_back(t);
+      return;
+    }
+    const auto it = pieces.find(t);
+    if (it != pieces.end())
+      for (int u : it->second) live(u, out);
   }
   int point_on_edge(int a, int b, const Vec3& p) {
     auto [it, fresh] = edge_point.try_emplace(edge_key(a, b), -1);
@@ -212,6 +223,37 @@ void split_crossed(SplitMesh& m, std::vector<int>& facets, const EndCut& cut, in
   }
 }
 
+// The chain edge seg.edge split at seg.start on both sides (or the vertex already there); the pieces of
+// the split facets join `facets`. Returns the vertex.
+int split_chain_edge(SplitMesh& m, std::unordered_map<std::uint64_t, std::vector<int>>& on_chain, const EndSegment& seg, double slack,
+                     std::vector<int>& facets) {
+  std::vector<int>& on = on_chain[edge_key(seg.edge[0], seg.edge[1])];
+  if (on.empty()) on = {seg.edge[0], seg.edge[1]};
+  for (int v : on)
+    if ((m.points[v] - seg.start).norm() <= slack) return v;
+  const int x = m.add(seg.start);
+  auto holds = [&](int a, int b) {  // a piece of the chain edge with seg.start inside it
+    if (std::find(on.begin(), on.end(), a) == on.end() || std::find(on.begin(), on.end(), b) == on.end()) return false;
+    const Vec3 d = m.points[b] - m.points[a];
+    const double t = (seg.start - m.points[a]).dot(d) / d.squaredNorm();
+    return t > 0 && t < 1;
+  };
+  for (size_t t = 0, count = m.tris.size(); t < count; ++t) {
+    if (m.gone[t]) continue;
+    const auto g = m.tris[t];
+    for (int j = 0; j < 3; ++j) {
+      const int a = g[j], b = g[(j + 1) % 3];
+      if (!holds(a, b)) continue;
+      const bool mine = std::find(facets.begin(), facets.end(), int(t)) != facets.end();
+      m.replace(int(t), {{a, x, g[(j + 2) % 3]}, {x, b, g[(j + 2) % 3]}});
+      if (mine) facets.push_back(int(m.tris.size()) - 2), facets.push_back(int(m.tris.size()) - 1);
+      break;
+    }
+  }
+  on.push_back(x);
+  return x;
+}
+
 }  // namespace
 
 std::vector<EndSegment> end_segments(const MeshTopology& mesh, const SharpChain& chain, const BaseMeshes& base,
@@ -255,34 +297,16 @@ bool split_along_end_segments(const MeshTopology& mesh, const std::vector<EndSeg
   m.tris.reserve(size_t(mesh.num_facets()) + 64);
   for (int f = 0; f < mesh.num_facets(); ++f) m.tris.push_back({mesh.F(f, 0), mesh.F(f, 1), mesh.F(f, 2)});
   m.gone.assign(m.tris.size(), 0);
-  std::unordered_map<std::uint64_t, int> on_chain;  // chain edge -> the vertex put on it
-  std::unordered_map<int, std::array<int, 2>> pieces_of;  // a facet on a split chain edge -> its two pieces
+  // Chain edge -> the vertices on it (its ends, then each point put on it). One edge can be crossed by
+  // both ends' planes (a chain of one long edge, as in a CAD mesh): the second splits the piece holding
+  // its point.
+  std::unordered_map<std::uint64_t, std::vector<int>> on_chain;
   for (const EndSegment& seg : segments) {
     const double slack = on_plane_slack((seg.corner - seg.start).norm(), seg.corner.cwiseAbs().maxCoeff());
-    std::vector<int> facets = seg.facets;
+    std::vector<int> facets;  // this side's facets, as earlier segments left them
+    for (int f : seg.facets) m.live(f, facets);
     int p = seg.end_vertex;
-    if (seg.edge[0] >= 0) {  // the chain edge split where the plane crosses it, on both sides
-      auto [it, fresh] = on_chain.try_emplace(edge_key(seg.edge[0], seg.edge[1]), -1);
-      if (fresh) {
-        it->second = m.add(seg.start);
-        for (size_t t = 0, count = m.tris.size(); t < count; ++t) {
-          if (m.gone[t]) continue;
-          const auto g = m.tris[t];
-          for (int j = 0; j < 3; ++j) {
-            const int a = g[j], b = g[(j + 1) % 3];
-            if (edge_key(a, b) != edge_key(seg.edge[0], seg.edge[1])) continue;
-            m.replace(int(t), {{a, it->second, g[(j + 2) % 3]}, {it->second, b, g[(j + 2) % 3]}});
-            pieces_of[int(t)] = {int(m.tris.size()) - 2, int(m.tris.size()) - 1};
-            break;
-          }
-        }
-      }
-      p = it->second;
-      for (int f : seg.facets) {  // the pieces of this side's facets join its list
-        auto split = pieces_of.find(f);
-        if (split != pieces_of.end()) facets.insert(facets.end(), split->second.begin(), split->second.end());
-      }
-    }
+    if (seg.edge[0] >= 0) p = split_chain_edge(m, on_chain, seg, slack, facets);
     snap_onto_plane(m, mesh, facets, seg.cut, p, m.points[p], seg.corner, slack);
     const int q = insert_corner(m, mesh, facets, seg.corner, slack);
     if (q < 0 || q == p) continue;

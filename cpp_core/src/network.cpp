@@ -16,6 +16,10 @@ const CornerEnd* corner_at(const NetworkPart& net, const Vec3& end_point) {
 
 namespace {
 
+// At a corner of four or more rounds, the largest distance a face may have from the one ball meant to
+// touch them all, as a share of the tolerance (three faces always have such a ball).
+constexpr double kCornerBallMissShare = 0.1;
+
 // +1 where chain c's edge at its end vertex v is convex (the solid's angle there is under 180 degrees),
 // -1 where it is concave, 0 where that edge has not two facets; n: the two facets' normals.
 int convexity_at(const MeshTopology& input, const SharpChain& c, int v, Vec3 n[2]) {
@@ -28,40 +32,47 @@ int convexity_at(const MeshTopology& input, const SharpChain& c, int v, Vec3 n[2
   return (input.corner(sides[0], third) - input.point(v)).dot(n[1]) < 0 ? 1 : -1;
 }
 
-// Three picked chains ending at vertex v (chains `ids`): their three faces there (each chain's two sides,
-// paired up), the convexity all three share, and the ball touching the three faces.
-SphereCorner three_round_corner(const MeshTopology& input, const std::vector<SharpChain>& chains, const std::array<size_t, 3>& ids,
-                                int v, const RoundOptions& opt, const Vec3& picked) {
+// Three or more picked chains ending at vertex v (chains `ids`): their faces there (each chain's two
+// sides, paired up: as many faces as chains, around the vertex), the convexity all of them share, and
+// the ball touching all the faces -- for four or more, only where their offsets meet in one point.
+SphereCorner ball_corner(const MeshTopology& input, const std::vector<SharpChain>& chains, const std::vector<size_t>& ids,
+                         int v, const RoundOptions& opt, const Vec3& picked) {
   SphereCorner corner;
   corner.vertex = input.point(v);
+  const size_t n = ids.size();
   auto refuse = [&](const std::string& why) {
-    throw RoundingError(ErrorCode::CornerNotBlendable, "the three chains picked at and around " + format_point(picked) + " meet at " +
-                        format_point(corner.vertex) + ": " + why);
+    throw RoundingError(ErrorCode::CornerNotBlendable, "the " + std::to_string(n) + " chains picked at and around " + format_point(picked) +
+                        " meet at " + format_point(corner.vertex) + ": " + why);
   };
   if (!opt.radius_law.empty()) refuse("variable radii into a corner are not blended yet");
   corner.radius = opt.radius;
   std::vector<Vec3> normals;  // the faces at the vertex, one normal each
   const double same = std::cos(opt.feature_angle_deg * M_PI / 180);
   int convex = 0;
-  for (int i = 0; i < 3; ++i) {
-    const SharpChain& c = chains[ids[i]];
+  for (size_t id : ids) {
+    const SharpChain& c = chains[id];
     const bool at_start = c.vertices.front() == v;
     const int next = at_start ? c.vertices[1] : c.vertices[c.vertices.size() - 2];
-    corner.toward[i] = (input.point(v) - input.point(next)).normalized();
-    Vec3 n[2];
-    const int sign = convexity_at(input, c, v, n);
+    corner.toward.push_back((input.point(v) - input.point(next)).normalized());
+    Vec3 sides[2];
+    const int sign = convexity_at(input, c, v, sides);
     if (sign == 0) refuse("an edge there has not two facets");
-    for (int k = 0; k < 2; ++k)
-      if (std::none_of(normals.begin(), normals.end(), [&](const Vec3& m) { return m.dot(n[k]) > same; })) normals.push_back(n[k]);
+    for (const Vec3& m : sides)
+      if (std::none_of(normals.begin(), normals.end(), [&](const Vec3& o) { return o.dot(m) > same; })) normals.push_back(m);
     convex += sign;
   }
-  if (normals.size() != 3) refuse(std::to_string(normals.size()) + " faces meet there, not three");
-  if (std::abs(convex) != 3) refuse("convex and concave edges mixed at one corner are not blended yet");
-  const Vec3 points[3] = {corner.vertex, corner.vertex, corner.vertex};
-  const Vec3 n3[3] = {normals[0], normals[1], normals[2]};
-  if (!corner_ball(points, n3, corner.radius, convex > 0, &corner.centre, corner.feet)) refuse("its faces do not meet in one point");
+  if (normals.size() != n) refuse(std::to_string(normals.size()) + " faces meet there, not " + std::to_string(n));
+  if (size_t(std::abs(convex)) != n) refuse("convex and concave edges mixed at one corner are not blended yet");
+  double miss = 0;
+  if (!corner_ball(corner.vertex, normals, corner.radius, convex > 0, &corner.centre, &corner.feet, &miss))
+    refuse("its faces do not meet in one point");
+  // A ball that misses a face by more than a share of the tolerance is not the rolling ball's corner.
+  const double tolerance = opt.effective_tolerance();
+  if (miss > kCornerBallMissShare * tolerance)
+    refuse("no ball of radius " + format_number(corner.radius) + " touches all " + std::to_string(n) + " faces there (one is " + format_number(miss) +
+           " off it): that corner needs an n-sided patch, not made yet");
   for (const Vec3& t : corner.toward)
-    if ((corner.vertex - corner.centre).dot(t) <= 0) refuse("the ball touching its three faces lies beyond a chain's end");
+    if ((corner.vertex - corner.centre).dot(t) <= 0) refuse("the ball touching its faces lies beyond a chain's end");
   return corner;
 }
 
@@ -135,8 +146,10 @@ std::vector<int> plan_stages(const MeshTopology& input, const std::vector<SharpC
 // OCCT blends two rounds meeting where a third edge stays sharp: both rounds run on to the plane through
 // the vertex bisecting the two chains and stop there, meeting along one curve (exact when their radii
 // and faces match there; otherwise the second round's rows find no vertex of the first's to share and
-// the call is refused, naming the corner). Three or more rounds at a vertex, a chain running on through
-// another's end, and variable radii into a corner are refused, naming the vertex.
+// the call is refused, naming the corner). Where three or more end at a vertex, with one convexity, they
+// meet in the ball touching all their faces (sphere_corner.h; four or more only where the faces' offsets
+// meet in one point). A chain running on through another's end, variable radii into a corner, and four
+// faces with no common ball are refused, naming the vertex.
 std::vector<NetworkPart> find_corners(const MeshTopology& input, const std::vector<SharpChain>& chains, const std::vector<Vec3>& picked,
                                       const RoundOptions& opt, std::vector<std::pair<SphereCorner, size_t>>* spheres) {
   std::vector<NetworkPart> out(chains.size());
@@ -158,11 +171,10 @@ std::vector<NetworkPart> find_corners(const MeshTopology& input, const std::vect
         others.push_back({j, j_start});
       }
       if (others.empty()) continue;
-      if (others.size() > 2)
-        throw RoundingError(ErrorCode::CornerNotBlendable, std::to_string(others.size() + 1) + " of the picked chains meet at " + format_point(input.point(v)) +
-                            ": corners of four or more rounds are not made yet (round fewer of them there)");
-      if (others.size() == 2) {
-        const SphereCorner corner = three_round_corner(input, chains, {k, others[0].first, others[1].first}, v, opt, picked[k]);
+      if (others.size() >= 2) {
+        std::vector<size_t> ids{k};
+        for (const auto& o : others) ids.push_back(o.first);
+        const SphereCorner corner = ball_corner(input, chains, ids, v, opt, picked[k]);
         if (std::none_of(spheres->begin(), spheres->end(), [&](const auto& c) { return c.first.vertex == corner.vertex; }))
           spheres->push_back({corner, k});
         CornerEnd end{input.point(v), into(chains[k], at_start), false};

@@ -149,6 +149,10 @@ std::vector<ProfileStation> sample_profiles(const SpineContext& ctx, const Radiu
 // its profile stations. At a sphere corner the rounds' ends are measured on balls that stand clear of the
 // other rounds only up to half a chain (longer setbacks are refused, naming the chain).
 constexpr double kMaxSetbackShare = 0.9, kMaxSetbackShareAtSphere = 0.5;
+// At a sphere corner the end's ball is measured this share of the radius before the corner's plane: on
+// the plane its contacts are the corner ball's feet, where the rounds made before end (their facets are
+// walls to this round's base meshes).
+constexpr double kSphereMeasureInset = 1e-3;
 
 // The profiles of a chain's round, its capped ends cut by their end faces (ends.h): where an end face
 // leans over the round, the balls stop short of it (their setback) and the last one is carried on along
@@ -172,7 +176,8 @@ std::vector<ProfileStation> end_cut_profiles(const SpineContext& ctx, const Radi
     // Measured on a ball clear of the end face (the one at the end may already lean on it); at a sphere
     // corner, on the ball at its plane or before it (one past it would stand on the other rounds' faces).
     double to_end = std::min(2 * law.max_radius(), 0.25 * L);
-    if (corner && corner->sphere) to_end = std::min(L, std::max(to_end, cut[end].past(end ? chain.points.back() : chain.points.front())));
+    if (corner && corner->sphere)
+      to_end = std::min(L, std::max(to_end, cut[end].past(end ? chain.points.back() : chain.points.front()) + kSphereMeasureInset * law.max_radius()));
     at_sphere |= corner && corner->sphere;
     // A radius over a quarter of the chain can put that ball where the balls of the other end stop short
     // of a mitre, on the other round's side (refused there as too large). Then balls elsewhere on the

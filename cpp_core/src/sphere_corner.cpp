@@ -16,23 +16,30 @@
 
 namespace meshround {
 
-bool corner_ball(const Vec3 points[3], const Vec3 normals[3], double radius, bool convex, Vec3* centre, Vec3 feet[3]) {
-  Eigen::Matrix3d N;
-  Vec3 rhs;
-  for (int i = 0; i < 3; ++i) N.row(i) = normals[i].transpose(), rhs[i] = normals[i].dot(points[i]) + (convex ? -radius : radius);
-  if (std::abs(N.determinant()) < 1e-6) return false;
-  *centre = N.partialPivLu().solve(rhs);
-  for (int i = 0; i < 3; ++i) feet[i] = *centre + (convex ? radius : -radius) * normals[i];
+bool corner_ball(const Vec3& point, const std::vector<Vec3>& normals, double radius, bool convex, Vec3* centre,
+                 std::vector<Vec3>* feet, double* miss) {
+  const Eigen::Index n = Eigen::Index(normals.size());
+  Eigen::MatrixX3d N(n, 3);
+  Eigen::VectorXd rhs(n);
+  for (Eigen::Index i = 0; i < n; ++i) N.row(i) = normals[size_t(i)].transpose(), rhs[i] = normals[size_t(i)].dot(point) + (convex ? -radius : radius);
+  // The smallest singular value of the unit normals: near 0 when they lie about one plane or line.
+  Eigen::JacobiSVD<Eigen::MatrixX3d> svd(N, Eigen::ComputeThinU | Eigen::ComputeThinV);
+  if (n < 3 || svd.singularValues()[2] < 1e-3) return false;
+  *centre = svd.solve(rhs);
+  *miss = (N * *centre - rhs).cwiseAbs().maxCoeff();
+  feet->clear();
+  for (const Vec3& m : normals) feet->push_back(*centre + (convex ? radius : -radius) * m);
   return true;
 }
 
 namespace {
 
 [[noreturn]] void not_blendable(const SphereCorner& c, const std::string& why) {
-  throw RoundingError(ErrorCode::CornerNotBlendable, "the three rounds at " + format_point(c.vertex) + " cannot be blended: " + why);
+  throw RoundingError(ErrorCode::CornerNotBlendable, "the " + std::to_string(c.toward.size()) + " rounds at " + format_point(c.vertex) +
+                      " cannot be blended: " + why);
 }
 
-// The facets between the three rounds' end planes and the vertex, reached from the vertex.
+// The facets between the rounds' end planes and the vertex, reached from the vertex.
 std::unordered_set<int> corner_facets(const MeshTopology& mesh, const SphereCorner& c, int vertex) {
   const double slack = 1e-4 * c.radius;
   auto inside = [&](int v) {
@@ -82,7 +89,8 @@ std::vector<int> hole_loop(const MeshTopology& mesh, const std::unordered_set<in
 constexpr int kMaxBisections = 40;
 
 // Longest-edge bisection of the inner edges longer than `longest` (the hole's own sides stay: they are
-// the rounds'), each new point put on the ball.
+// the rounds'; a triangle whose longest edge is one splits its longest inner edge), each new point put on
+// the ball.
 void refine_on_ball(MeshEdit& edit, std::vector<std::array<int, 3>>& tris, const std::unordered_set<std::uint64_t>& sides,
                     const SphereCorner& c, double longest) {
   auto length = [&](int a, int b) { return (edit.point(a) - edit.point(b)).norm(); };
@@ -99,14 +107,17 @@ void refine_on_ball(MeshEdit& edit, std::vector<std::array<int, 3>>& tris, const
     const size_t n = tris.size();
     for (size_t t = 0; t < n; ++t) {
       if (touched[t]) continue;
-      int k = 0;  // the triangle's longest side
-      for (int j = 1; j < 3; ++j)
-        if (length(tris[t][j], tris[t][(j + 1) % 3]) > length(tris[t][k], tris[t][(k + 1) % 3])) k = j;
+      int k = -1;  // the triangle's longest inner edge (the hole's sides stay)
+      for (int j = 0; j < 3; ++j) {
+        const int a = tris[t][j], b = tris[t][(j + 1) % 3];
+        if (!std::isfinite(length(a, b)))
+          not_blendable(c, "the rounds' ends do not close a patch on the corner ball (a point of it is not a number)");
+        if (!sides.count(edge_key(a, b)) && (k < 0 || length(a, b) > length(tris[t][k], tris[t][(k + 1) % 3]))) k = j;
+      }
+      if (k < 0) continue;
       const int a = tris[t][k], b = tris[t][(k + 1) % 3];
       const std::uint64_t key = edge_key(a, b);
-      if (!std::isfinite(length(a, b)))
-        not_blendable(c, "the rounds' ends do not close a patch on the corner ball (a point of it is not a number)");
-      if (sides.count(key) || length(a, b) <= longest) continue;
+      if (length(a, b) <= longest) continue;
       // (A side across the ball has no middle on it: the patch would not be a corner's.)
       if ((0.5 * (edit.point(a) + edit.point(b)) - c.centre).norm() <= 1e-3 * c.radius)
         not_blendable(c, "the rounds' ends lie on opposite sides of the corner ball");
@@ -176,6 +187,17 @@ bool rows_to_apex(MeshEdit& edit, const std::vector<int>& loop, const int at[3],
   return true;
 }
 
+// The patch of four or more sides as a fan from the ball's point amid the loop. (A plane triangulation
+// of the loop can join opposite feet by edges whose middles all fall on one point of the ball, so its
+// bisection makes facets without area.) The patch lies within a hemisphere and bulges towards its
+// middle, so every triangle of the fan is a proper one; the bisection refines them.
+void fan_from_middle(MeshEdit& edit, const std::vector<int>& loop, const SphereCorner& c, std::vector<std::array<int, 3>>& tris) {
+  Vec3 towards = Vec3::Zero();
+  for (int v : loop) towards += (edit.point(v) - c.centre).normalized();
+  const int middle = edit.add_point(c.centre + c.radius * towards.normalized());
+  for (size_t i = 0; i < loop.size(); ++i) tris.push_back({loop[i], loop[(i + 1) % loop.size()], middle});
+}
+
 }  // namespace
 
 void blend_sphere_corner(const Points& V, const Triangles& F, const SphereCorner& corner, double tolerance,
@@ -201,23 +223,26 @@ void blend_sphere_corner(const Points& V, const Triangles& F, const SphereCorner
     normal += (mesh.point(a) - corner.centre).cross(mesh.point(b) - corner.centre);
     sides.insert(edge_key(a, b));
   }
-  // The patch's corners on the loop: the feet of the ball.
-  int at[3];
-  for (int k = 0; k < 3; ++k) {
-    at[k] = 0;
-    for (int i = 1; i < int(loop.size()); ++i)
-      if ((mesh.point(loop[i]) - corner.feet[k]).norm() < (mesh.point(loop[at[k]]) - corner.feet[k]).norm()) at[k] = i;
-    if ((mesh.point(loop[at[k]]) - corner.feet[k]).norm() > 1e-3 * corner.radius + tolerance)
-      not_blendable(corner, "no round ends at the ball's foot " + format_point(corner.feet[k]));
+  // The patch's corners on the loop: the feet of the ball, in the loop's order.
+  const int n = int(loop.size());
+  std::vector<int> at;
+  for (const Vec3& foot : corner.feet) {
+    int best = 0;
+    for (int i = 1; i < n; ++i)
+      if ((mesh.point(loop[i]) - foot).norm() < (mesh.point(loop[best]) - foot).norm()) best = i;
+    if ((mesh.point(loop[best]) - foot).norm() > 1e-3 * corner.radius + tolerance) not_blendable(corner, "no round ends at the ball's foot " + format_point(foot));
+    at.push_back(best);
   }
-  if ((at[1] - at[0] + int(loop.size())) % int(loop.size()) > (at[2] - at[0] + int(loop.size())) % int(loop.size())) std::swap(at[1], at[2]);
+  std::sort(at.begin(), at.end());
+  if (std::adjacent_find(at.begin(), at.end()) != at.end()) not_blendable(corner, "two of the ball's feet fall on one point of the corner's boundary");
   std::vector<std::array<int, 3>> tris;
   bool rows = false;
-  for (int turn = 0; turn < 3 && !rows; ++turn) {  // an apex whose two sides have one count of segments
-    const int order[3] = {at[turn], at[(turn + 1) % 3], at[(turn + 2) % 3]};
+  for (int turn = 0; turn < 3 && at.size() == 3 && !rows; ++turn) {  // an apex whose two sides have one count of segments
+    const int order[3] = {at[size_t(turn)], at[size_t(turn + 1) % 3], at[size_t(turn + 2) % 3]};
     rows = rows_to_apex(edit, loop, order, corner, tris);
   }
-  if (!rows) triangulate_polygon(edit, loop, normal, tris);
+  if (!rows && at.size() > 3) fan_from_middle(edit, loop, corner, tris);
+  else if (!rows) triangulate_polygon(edit, loop, normal, tris);
   // A triangle of sides e strays about e^2 / (6 r) from the ball at its middle.
   refine_on_ball(edit, tris, sides, corner, std::sqrt(6 * corner.radius * tolerance));
   // Every triangle faces the way the loop runs (the rows are made without regard to it): seen from the

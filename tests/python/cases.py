@@ -194,6 +194,22 @@ def box_top_corner():
     return s, [e for e in s.Edges if any((v.Point - at).Length < TOL for v in e.Vertexes) and abs(e.Vertexes[0].Point.z - e.Vertexes[1].Point.z) < TOL]
 
 
+def pyramid():
+    """Every edge of a square pyramid (base 60 x 60, height 30): four rounds meet at the apex, three at
+    each base corner. OCCT's fillet makes no valid solid of it (it does not blend four rounds at a
+    vertex); the reference is the solid offset inwards by r and back out with round joins, which is the
+    rolling ball's answer when every edge of a convex solid is rounded with one radius."""
+    pts = [V(0, 0, 0), V(60, 0, 0), V(60, 60, 0), V(0, 60, 0)]
+    apex = V(30, 30, 30)
+    faces = [Part.Face(Part.makePolygon(pts + pts[:1]))]
+    faces += [Part.Face(Part.makePolygon([pts[i], pts[(i + 1) % 4], apex, pts[i]])) for i in range(4)]
+    s = Part.Solid(Part.Shell(faces))
+    return s, list(s.Edges)
+
+
+pyramid.offset_reference = True
+
+
 def s_outline():
     """Plan view S: line, convex arc R20, concave arc R30, line -- tangent throughout, from (0,60) to (120,10)."""
     return Part.Wire([
@@ -294,6 +310,7 @@ class Case:
 
     def __init__(self, name, builder, radius, law=None, controls="measured"):
         self.name = name
+        self.builder = builder
         self.solid, self.chain = builder()
         self.law = law
         self.r_max = radius if law is None else max(r for _, r in law)
@@ -342,6 +359,8 @@ class Case:
         return False
 
     def _occt_fillet(self, radius):
+        if getattr(self.builder, "offset_reference", False):  # every edge of a convex solid, one radius
+            return self.solid.makeOffsetShape(-radius, 1e-7, join=0).makeOffsetShape(radius, 1e-7, join=0)
         if self.law is None:
             return self.solid.makeFillet(radius, self.chain)
         return part_fillet_feature(self.solid, self._edge_stations())
@@ -423,6 +442,7 @@ SPECS = {
     "pocket_rim_walls_draft": (pocket_rim_walls(10.0), 2.0, None),
     "box_corner": (box_corner, 5.0, None),
     "box_top_corner": (box_top_corner, 5.0, None),
+    "pyramid": (pyramid, 4.0, None),
     "box_var": (box, None, [(0.0, 2.0), (1.0, 8.0)]),
     "lchannel_var": (lchannel, None, [(0.0, 2.0), (1.0, 6.0)]),
     "s_chain_var3": (s_plate, None, [(0.0, 2.5), (0.5, 5.0), (1.0, 3.0)]),

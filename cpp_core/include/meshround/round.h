@@ -57,7 +57,7 @@ struct RoundedChain {
 struct CornerReport {
   Vec3 vertex;                // where the chains meet
   std::string kind;           // "mitre": two rounds meeting on the plane halving the chains' angle, a crease as in
-                              // OCCT's fillet; "sphere": three rounds and the ball touching their three faces;
+                              // OCCT's fillet; "sphere": three or more rounds and the ball touching all their faces;
                               // "rolled": convex and concave mixed -- the odd round first, the other two as one
                               // round rolling on around its end (a torus where the faces are square)
   std::vector<int> chains;    // the rounds meeting there (RoundResult::chains); rolled: the odd one, the rolled one
