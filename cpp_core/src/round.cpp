@@ -465,6 +465,12 @@ std::vector<SharpChain> find_chains(const MeshTopology& mesh, const std::vector<
   return chains;
 }
 
+RoundingError on_own_mesh(const RoundingError& e, const Vec3& picked) {
+  if (e.code != ErrorCode::NonManifoldInput && e.code != ErrorCode::NoSharpEdge) return e;
+  return RoundingError(ErrorCode::ResultInvalid, std::string("the rounds made before the chain picked at ") + format_point(picked) +
+                       " left a mesh it cannot be rounded on (" + e.what() + "); nothing was changed. Try another radius, or round it in a call of its own");
+}
+
 RoundResult round_edges(const Points& V, const Triangles& F, const std::vector<Vec3>& seeds, const RoundOptions& opt) {
   return round_edges_after(V, F, seeds, opt, {});
 }
@@ -547,7 +553,11 @@ RoundResult round_edges_after(const Points& V, const Triangles& F, const std::ve
     } else {
       const MeshTopology mesh(cur_V, cur_F);
       const ChainSeed seed{chain_seeds[k].point, edge_in(lineage, chain_seeds[k].on_edge)};
-      result.chains.push_back(round_one_chain(mesh, seed, chain_options[k], result.report, &step, net, keep));
+      try {
+        result.chains.push_back(round_one_chain(mesh, seed, chain_options[k], result.report, &step, net, keep));
+      } catch (const RoundingError& e) {
+        throw on_own_mesh(e, picked[k]);
+      }
     }
     if (passes == 1) delta = std::move(step);
     else apply_step(step, k == 0);

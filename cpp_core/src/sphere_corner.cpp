@@ -7,6 +7,7 @@
 #include <cmath>
 #include <unordered_map>
 #include <unordered_set>
+#include <functional>
 #include <vector>
 
 #include "guard.h"
@@ -89,53 +90,68 @@ std::vector<int> hole_loop(const MeshTopology& mesh, const std::unordered_set<in
 constexpr int kMaxBisections = 40;
 
 // Longest-edge bisection of the inner edges longer than `longest` (the hole's own sides stay: they are
-// the rounds'; a triangle whose longest edge is one splits its longest inner edge), each new point put on
-// the ball.
+// the rounds'), each new point put on the ball. Each pass marks every triangle's longest inner edge that
+// is too long, and then, until nothing changes, the longest inner edge of every triangle with a marked
+// edge (so a triangle is always cut from its longest inner edge first); every marked edge gets one
+// middle, and each triangle is cut by its marked edges. The patch stays conforming and every pass halves
+// the longest inner edges.
 void refine_on_ball(MeshEdit& edit, std::vector<std::array<int, 3>>& tris, const std::unordered_set<std::uint64_t>& sides,
                     const SphereCorner& c, double longest) {
   auto length = [&](int a, int b) { return (edit.point(a) - edit.point(b)).norm(); };
-  // Each pass halves the longest inner edges: kMaxBisections passes reach any length a patch needs.
-  int passes = 0;
-  for (bool split = true; split;) {
-    poll_cancel();
-    if (++passes > kMaxBisections) not_blendable(c, "its patch does not refine to the tolerance");
-    split = false;
-    std::unordered_map<std::uint64_t, std::vector<int>> by_edge;
-    for (int t = 0; t < int(tris.size()); ++t)
-      for (int k = 0; k < 3; ++k) by_edge[edge_key(tris[t][k], tris[t][(k + 1) % 3])].push_back(t);
-    std::vector<char> touched(tris.size(), 0);
-    const size_t n = tris.size();
-    for (size_t t = 0; t < n; ++t) {
-      if (touched[t]) continue;
-      int k = -1;  // the triangle's longest inner edge (the hole's sides stay)
-      for (int j = 0; j < 3; ++j) {
-        const int a = tris[t][j], b = tris[t][(j + 1) % 3];
-        if (!std::isfinite(length(a, b)))
-          not_blendable(c, "the rounds' ends do not close a patch on the corner ball (a point of it is not a number)");
-        if (!sides.count(edge_key(a, b)) && (k < 0 || length(a, b) > length(tris[t][k], tris[t][(k + 1) % 3]))) k = j;
-      }
-      if (k < 0) continue;
-      const int a = tris[t][k], b = tris[t][(k + 1) % 3];
-      const std::uint64_t key = edge_key(a, b);
-      if (length(a, b) <= longest) continue;
-      // (A side across the ball has no middle on it: the patch would not be a corner's.)
-      if ((0.5 * (edit.point(a) + edit.point(b)) - c.centre).norm() <= 1e-3 * c.radius)
-        not_blendable(c, "the rounds' ends lie on opposite sides of the corner ball");
-      const std::vector<int>& two = by_edge[key];
-      if (std::any_of(two.begin(), two.end(), [&](int u) { return touched[u]; })) continue;
-      const Vec3 mid = c.centre + c.radius * (0.5 * (edit.point(a) + edit.point(b)) - c.centre).normalized();
-      const int m = edit.add_point(mid);
-      for (int u : two) {
-        auto& tri = tris[u];
-        int j = 0;
-        while (edge_key(tri[j], tri[(j + 1) % 3]) != key) ++j;
-        const std::array<int, 3> old = tri;
-        tri = {old[j], m, old[(j + 2) % 3]};
-        tris.push_back({m, old[(j + 1) % 3], old[(j + 2) % 3]});
-        touched[u] = 1;
-      }
-      split = true;
+  auto longest_inner = [&](const std::array<int, 3>& t) {  // its index j (edge t[j] -> t[j+1]), or -1
+    int k = -1;
+    for (int j = 0; j < 3; ++j) {
+      const int a = t[size_t(j)], b = t[size_t(j + 1) % 3];
+      if (!std::isfinite(length(a, b)))
+        not_blendable(c, "the rounds' ends do not close a patch on the corner ball (a point of it is not a number)");
+      if (!sides.count(edge_key(a, b)) && (k < 0 || length(a, b) > length(t[size_t(k)], t[size_t(k + 1) % 3]))) k = j;
     }
+    return k;
+  };
+  for (int pass = 1;; ++pass) {
+    poll_cancel();
+    std::unordered_map<std::uint64_t, int> middle;  // marked edge -> its middle (-1 until made)
+    for (const auto& t : tris) {
+      const int k = longest_inner(t);
+      if (k >= 0 && length(t[size_t(k)], t[size_t(k + 1) % 3]) > longest) middle[edge_key(t[size_t(k)], t[size_t(k + 1) % 3])] = -1;
+    }
+    if (middle.empty()) return;
+    if (pass > kMaxBisections) not_blendable(c, "its patch does not refine to the tolerance");
+    for (bool grew = true; grew;) {
+      grew = false;
+      for (const auto& t : tris) {
+        bool marked = false;
+        for (int j = 0; j < 3; ++j) marked |= middle.count(edge_key(t[size_t(j)], t[size_t(j + 1) % 3])) > 0;
+        const int k = longest_inner(t);
+        if (marked && k >= 0) grew |= middle.emplace(edge_key(t[size_t(k)], t[size_t(k + 1) % 3]), -1).second;
+      }
+    }
+    auto middle_of = [&](int a, int b) {
+      int& m = middle.at(edge_key(a, b));
+      if (m < 0) {
+        // (A side across the ball has no middle on it: the patch would not be a corner's.)
+        const Vec3 mid = 0.5 * (edit.point(a) + edit.point(b)) - c.centre;
+        if (mid.norm() <= 1e-3 * c.radius) not_blendable(c, "the rounds' ends lie on opposite sides of the corner ball");
+        m = edit.add_point(c.centre + c.radius * mid.normalized());
+      }
+      return m;
+    };
+    std::vector<std::array<int, 3>> out;
+    // Cuts triangle t (kept in its orientation) at its marked edges, the longest inner one first.
+    std::function<void(const std::array<int, 3>&)> cut = [&](const std::array<int, 3>& t) {
+      int k = -1;
+      for (int j = 0; j < 3; ++j)
+        if (middle.count(edge_key(t[size_t(j)], t[size_t(j + 1) % 3])) && (k < 0 || j == longest_inner(t))) k = j;
+      if (k < 0) {
+        out.push_back(t);
+        return;
+      }
+      const int a = t[size_t(k)], b = t[size_t(k + 1) % 3], x = t[size_t(k + 2) % 3], m = middle_of(a, b);
+      cut({a, m, x});
+      cut({m, b, x});
+    };
+    for (const auto& t : tris) cut(t);
+    tris.swap(out);
   }
 }
 

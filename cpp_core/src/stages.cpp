@@ -51,7 +51,12 @@ RoundResult round_in_stages(const Points& V, const Triangles& F, const std::vect
   const RoundResult a = round_edges(V, F, picks[0], with_arrays);
   std::vector<ExactRound> earlier;
   for (const RoundedChain& c : a.chains) earlier.push_back({c.spine, opt.max_radius()});  // (one constant radius: plan_stages)
-  const RoundResult b = round_edges_after(a.vertices, a.triangles, picks[1], with_arrays, earlier);
+  RoundResult b;
+  try {
+    b = round_edges_after(a.vertices, a.triangles, picks[1], with_arrays, earlier);
+  } catch (const RoundingError& e) {
+    throw on_own_mesh(e, picks[1].front());
+  }
 
   RoundResult out;
   Points V1;

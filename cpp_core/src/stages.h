@@ -11,6 +11,11 @@
 
 namespace meshround {
 
+// A later pass of a network (or a second stage) works on the mesh the earlier ones made: what it finds
+// wrong with that mesh (a degenerate facet, an edge no longer sharp) is this call's own fault, not the
+// input's, and is reported as result_invalid naming the chain picked at `picked`; other errors as they are.
+RoundingError on_own_mesh(const RoundingError& e, const Vec3& picked);
+
 // round_edges on a mesh whose rounds `earlier` a first stage made: base facets on them are measured on
 // their exact surfaces (spine.h ExactRound), so a round rolling on around one's end is tangent to it.
 RoundResult round_edges_after(const Points& V, const Triangles& F, const std::vector<Vec3>& seeds, const RoundOptions& opt,

@@ -194,6 +194,21 @@ def box_top_corner():
     return s, [e for e in s.Edges if any((v.Point - at).Length < TOL for v in e.Vertexes) and abs(e.Vertexes[0].Point.z - e.Vertexes[1].Point.z) < TOL]
 
 
+def l_bracket(side):
+    """A shoulder running into a wall at 45 degrees in plan: an 80 x 60 x 10 flange with a 12 thick, 40
+    high wall standing on it at 45 degrees to the flange's front top edge, which the wall cuts in two. The
+    chain is the front top edge on one side of the wall: side 0 meets the wall face at 45 degrees (the
+    wall leans over the round's end), side 1 at 135 degrees."""
+    def build():
+        wall = Part.makeBox(12, 120, 40, V(0, -60, 0))
+        wall.rotate(V(0, 0, 0), V(0, 0, 1), -45)
+        wall.translate(V(50, 0, 0))
+        s = Part.makeBox(80, 60, 10).fuse(wall.common(Part.makeBox(80, 60, 40))).removeSplitter()
+        front = sorted(edges_where(s, lambda p: abs(p.y) < TOL and abs(p.z - 10) < TOL), key=lambda e: e.BoundBox.XMin)
+        return s, [front[side]]
+    return build
+
+
 def pyramid():
     """Every edge of a square pyramid (base 60 x 60, height 30): four rounds meet at the apex, three at
     each base corner. OCCT's fillet makes no valid solid of it (it does not blend four rounds at a
@@ -436,6 +451,8 @@ SPECS = {
     "pocket_edge": (pocket_edge(), 2.0, None),
     "pocket_edge_draft": (pocket_edge(10.0), 2.0, None),
     "box_oblique_end": (box_oblique_end, 4.0, None),
+    "l_bracket_45": (l_bracket(0), 2.0, None),
+    "l_bracket_135": (l_bracket(1), 2.0, None),
     "pocket_rim_square": (pocket_rim_square(), 2.0, None),
     "pocket_rim_draft": (pocket_rim_square(10.0), 2.0, None),
     "pocket_rim_walls": (pocket_rim_walls(), 2.0, None),

@@ -85,3 +85,23 @@ def test_four_rounds_whose_faces_have_no_common_ball_are_refused_by_name():
     assert err.value.code == "corner_not_blendable"
     assert "(24, 30, 30)" in str(err.value) and "n-sided patch" in str(err.value)
     assert (mesh.Topology, mesh.CountFacets) == before
+
+
+@pytest.mark.parametrize("element, radius", [(0.0, 1.0), (0.0, 3.0), (1.0, 3.0), (3.0, 1.0)])
+def test_a_clean_input_is_never_blamed(element, radius):
+    """Every edge of the pyramid at other radii and meshes (element 0: the CAD mesh, one facet per face):
+    a sound result, or a refusal that does not send the user to repair a mesh that is clean -- a pass
+    that finds the mesh an earlier pass of the call made unfit reports result_invalid."""
+    solid, edges = cases.pyramid()
+    if element:
+        mesh = MeshPart.meshFromShape(Shape=solid, MaxLength=element)
+    else:
+        mesh = MeshPart.meshFromShape(Shape=solid, **cases.MESH_VARIANTS["cad"])
+    V0, F0 = meshconv.mesh_to_arrays(mesh)
+    try:
+        res = MeshRound.round_edges(mesh, edge_middles(edges), radius)
+    except MeshRound.RoundingError as err:
+        assert err.code not in ("non_manifold_input", "no_sharp_edge", "invalid_input"), str(err)
+        return
+    V1, F1 = meshconv.mesh_to_arrays(res.mesh)
+    assert soundness.problems(V0, F0, V1, F1) == []

@@ -73,10 +73,10 @@ def assert_like_occt(case, mesh):
     return res
 
 
-@pytest.mark.parametrize("draft, variant", [(0.0, "fine"), (10.0, "fine"), (0.0, "coarse"), (10.0, "coarse")])
+@pytest.mark.parametrize("draft, variant", [(0.0, "fine"), (10.0, "fine"), (0.0, "coarse"), (10.0, "coarse"), (0.0, "cad")])
 def test_a_whole_pocket_rounds_like_occt(draft, variant):
     """Rim, wall corners and floor: 12 edges in one call, against OCCT's fillet of the 12 edges, on meshes
-    of elements 0.4 r and 2.5 r."""
+    of elements 0.4 r and 2.5 r and the CAD mesh."""
     case = cases.Case("pocket_all", cases.pocket_all(draft), R)
     assert len(case.chain) == 12
     res = assert_like_occt(case, case.mesh(variant))
