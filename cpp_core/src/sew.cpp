@@ -92,6 +92,40 @@ std::vector<int> split_long_sides(MeshEdit& edit, const std::vector<int>& loop, 
   return out;
 }
 
+// The gaps' loops from their open edges (from -> to). Where loops touch at a vertex (two end caps meeting
+// at one corner of a face) the walk cuts each closed sub-loop off as it comes back to a vertex it passed.
+// `open_chains`: walks that end where no open edge goes on (the gap reaches the mesh boundary).
+std::vector<std::vector<int>> gap_loops(const std::vector<std::pair<int, int>>& edges, int* open_chains) {
+  std::map<int, std::vector<int>> out;  // (ordered: the loops come in a fixed order)
+  for (const auto& [from, to] : edges) out[from].push_back(to);
+  std::vector<std::vector<int>> loops;
+  *open_chains = 0;
+  while (!out.empty()) {
+    std::vector<int> path{out.begin()->first};
+    std::map<int, size_t> at{{path[0], 0}};
+    while (true) {
+      const auto it = out.find(path.back());
+      if (it == out.end()) {
+        if (path.size() > 1) ++*open_chains;
+        break;
+      }
+      const int w = it->second.back();
+      it->second.pop_back();
+      if (it->second.empty()) out.erase(it);
+      const auto seen = at.find(w);
+      if (seen == at.end()) {
+        at[w] = path.size();
+        path.push_back(w);
+        continue;
+      }
+      loops.emplace_back(path.begin() + long(seen->second), path.end());
+      for (size_t i = seen->second + 1; i < path.size(); ++i) at.erase(path[i]);
+      path.resize(seen->second + 1);
+    }
+  }
+  return loops;
+}
+
 }  // namespace
 
 SewStats sew_round(MeshEdit& edit, size_t round_begin, size_t round_end, const Refinement& fill) {
@@ -116,28 +150,17 @@ SewStats sew_round(MeshEdit& edit, size_t round_begin, size_t round_end, const R
 
   // Gaps: loops of edges that are open now but were not open in the input.
   const MeshTopology& in = edit.input;
-  std::map<int, int> next;  // fill loops run against the open edges' facets
+  std::vector<std::pair<int, int>> open_edges;  // fill loops run against the open edges' facets: b -> a
   for (const auto& [key, e] : edges_near_edit(edit)) {
     if (e.count != 1) continue;
     const bool input_edge = e.a < in.num_vertices() && e.b < in.num_vertices();
     if (input_edge && in.edge_facets(e.a, e.b).size() == 1) continue;  // the input's own boundary
-    next[e.b] = e.a;
+    open_edges.push_back({e.b, e.a});
   }
-  while (!next.empty()) {
+  int open_chains = 0;
+  for (std::vector<int>& loop : gap_loops(open_edges, &open_chains)) {
     poll_cancel();
-    std::vector<int> loop{next.begin()->first};
-    bool closed = false;
-    for (size_t guard = 0; guard <= next.size() + 1; ++guard) {
-      auto it = next.find(loop.back());
-      if (it == next.end()) break;
-      if (it->second == loop.front()) {
-        closed = true;
-        break;
-      }
-      loop.push_back(it->second);
-    }
-    for (int v : loop) next.erase(v);
-    if (!closed || loop.size() < 3) {
+    if (loop.size() < 3) {
       ++stats.open_gaps;
       continue;
     }
@@ -153,6 +176,7 @@ SewStats sew_round(MeshEdit& edit, size_t round_begin, size_t round_end, const R
     triangulate_polygon(edit, loop, normal, edit.added, fill);
     stats.gap_facets += int(edit.added.size() - before);
   }
+  stats.open_gaps += open_chains;
   return stats;
 }
 

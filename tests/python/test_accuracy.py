@@ -40,13 +40,12 @@ ROWS = {}
 # three rounds, its two top edges): deviation, topology, locality and smoothness hold, but the CAD facets that
 # span the whole face beside the band's corner leave new facets under 10 degrees there.
 _CAD_CORNER_THIN = {("pocket_edge", "cad"), ("pocket_edge_draft", "cad"), ("pocket_rim_square", "cad"),
-                    ("box_corner", "cad"), ("box_top_corner", "cad"), ("pocket_rim_walls", "cad")}
+                    ("box_corner", "cad"), ("box_top_corner", "cad"), ("pocket_rim_walls", "cad"),
+                    ("l_bracket_135", "cad")}
 # The drafted pocket's rim rolling on around its wall corners' rounds, on the CAD mesh: the first stage's
 # top-face vertex 0.07 mm outside the rim round's trim line leaves a sliver that folds over (the output
 # check refuses the result: facets that cross each other).
-# The shoulder meeting the wall at 135 degrees, on the CAD mesh: the end face's long facets leave a hole
-# beside the round's end (refused: a new boundary edge).
-_REFUSED = {("pocket_rim_walls_draft", "cad"), ("l_bracket_135", "cad")}
+_REFUSED = {("pocket_rim_walls_draft", "cad")}
 # The pyramid's CAD mesh (one facet per face): the faces beside the band are re-triangulated with facets
 # under 10 degrees.
 KNOWN_FAULTS = {
