@@ -1,6 +1,6 @@
 // Networks of picked chains (round_edges): where chains of one call meet at a vertex, and how each
 // round ends there -- a mitre between two rounds, or the plane across the chain through the ball of a
-// sphere corner (sphere_corner.h) between three.
+// sphere corner (sphere_corner.h) between three or more.
 #pragma once
 #include <array>
 #include <utility>
@@ -20,7 +20,7 @@ struct CornerEnd {
   Vec3 point, normal;
   bool other_made = false;
   Vec3 plane_point = point;  // the plane's point: the vertex for a mitre, the ball's centre at a sphere corner
-  bool sphere = false;       // one of three rounds at the vertex (sphere_corner.h)
+  bool sphere = false;       // one of three or more rounds at the vertex (sphere_corner.h)
 };
 struct NetworkPart {
   std::vector<CornerEnd> corners;

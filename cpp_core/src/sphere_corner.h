@@ -30,8 +30,8 @@ struct SphereCorner {
 bool corner_ball(const Vec3& point, const std::vector<Vec3>& normals, double radius, bool convex, Vec3* centre,
                  std::vector<Vec3>* feet, double* miss);
 
-// V / F: the mesh with the three rounds made; `delta`: the patch as an edit of it. Refuses (corner_not_blendable) when the corner is not one
-// hole bounded by the three arcs, and (result_invalid) when the patch fails the output check (guard.h;
+// V / F: the mesh with the rounds made; `delta`: the patch as an edit of it. Refuses (corner_not_blendable) when the corner is not one
+// hole bounded by the rounds' arcs, and (result_invalid) when the patch fails the output check (guard.h;
 // `chain` and `reach` for its placement test).
 void blend_sphere_corner(const Points& V, const Triangles& F, const SphereCorner& corner, double tolerance,
                          const SharpChain& chain, double reach, MeshDelta& delta);
