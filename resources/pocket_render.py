@@ -2,7 +2,8 @@
 corners mitred (scene pocket_rim, the default); every edge of that pocket, the rim rolling on around the
 rounded wall corners and the floor's corners spheres (scene pocket_all); a box corner with its three
 edges rounded, meeting in the corner ball (scene box_corner), or two of them (the top edges) mitred, the
-third edge left sharp (scene box_top_corner).
+third edge left sharp (scene box_top_corner); a square pyramid with every edge rounded, four rounds
+meeting in the ball at its apex (scene pyramid).
 
     QTWEBENGINE_CHROMIUM_FLAGS=--no-sandbox xvfb-run -a -s "-screen 0 1600x1200x24" freecad resources/pocket_render.py
     MESHROUND_SCENE=box_corner QTWEBENGINE_CHROMIUM_FLAGS=--no-sandbox xvfb-run -a -s "-screen 0 1600x1200x24" freecad resources/pocket_render.py
@@ -32,6 +33,14 @@ from render_support import rest_and_band, run_unattended, set_camera  # noqa: E4
 V = FreeCAD.Vector
 TILE = (800, 600)
 GREY, ORANGE, LINES = (0.80, 0.83, 0.88), (1.00, 0.55, 0.15), (0.35, 0.38, 0.45)
+def _pyramid():
+    """A square pyramid (base 60 x 60, height 30): four rounds meet at its apex, three at each base corner."""
+    pts = [V(0, 0, 0), V(60, 0, 0), V(60, 60, 0), V(0, 60, 0)]
+    faces = [Part.Face(Part.makePolygon(pts + pts[:1]))]
+    faces += [Part.Face(Part.makePolygon([pts[i], pts[(i + 1) % 4], V(30, 30, 30), pts[i]])) for i in range(4)]
+    return Part.Solid(Part.Shell(faces))
+
+
 # scene -> (solid, element size, seeds, radius, views: (view direction, focus, height, facets shown))
 SCENES = {
     "pocket_rim": (lambda: Part.makeBox(80, 60, 30).cut(Part.makeBox(40, 30, 13, V(20, 15, 18))).removeSplitter(), 0.8,
@@ -45,6 +54,9 @@ SCENES = {
                    [((-1.0, -1.1, -0.8), None, None, False), ((-1.0, -1.0, -1.0), (97.0, 57.0, 37.0), 16.0, True)]),
     "box_top_corner": (lambda: Part.makeBox(100, 60, 40), 2.0, [V(50, 60, 40), V(100, 30, 40)], 5.0,
                        [((-1.0, -1.1, -0.8), None, None, False), ((-1.0, -1.0, -1.0), (97.0, 57.0, 37.0), 16.0, True)]),
+    "pyramid": (lambda: _pyramid(), 1.6, [V(30, 0, 0), V(60, 30, 0), V(30, 60, 0), V(0, 30, 0), V(15, 15, 15), V(45, 15, 15),
+                                          V(45, 45, 15), V(15, 45, 15)], 4.0,
+                [((-1.0, 0.6, -0.7), None, None, False), ((-0.45, 0.35, -1.0), (30.0, 30.0, 25.0), 16.0, True)]),
 }
 SCENE = os.environ.get("MESHROUND_SCENE", "pocket_rim")
 OUT = os.environ.get("POCKET_PNG", os.path.join(HERE, "images", SCENE + ".png"))
