@@ -105,3 +105,19 @@ def test_a_clean_input_is_never_blamed(element, radius):
         return
     V1, F1 = meshconv.mesh_to_arrays(res.mesh)
     assert soundness.problems(V0, F0, V1, F1) == []
+
+
+def test_a_flipped_facet_near_the_apex_is_named_as_the_inputs():
+    """A flipped facet beside the apex that the first chains' passes do not reach: a later pass meets it,
+    and the refusal still names the input's fault (non_manifold_input), not the call's own mesh."""
+    solid, edges = cases.pyramid()
+    V0, F0 = meshconv.mesh_to_arrays(MeshPart.meshFromShape(Shape=solid, MaxLength=1.6))
+    near = int(np.linalg.norm(V0[F0].mean(axis=1) - [28, 28, 26], axis=1).argmin())
+    F1 = F0.copy()
+    F1[near] = F1[near][[0, 2, 1]]
+    mesh = meshconv.arrays_to_mesh(V0, F1)
+    before = mesh.Topology
+    with pytest.raises(MeshRound.RoundingError) as err:
+        MeshRound.round_edges(mesh, edge_middles(edges), R)
+    assert err.value.code == "non_manifold_input" and "flipped" in str(err.value)
+    assert mesh.Topology == before
