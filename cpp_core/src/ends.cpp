@@ -91,6 +91,7 @@ struct SplitMesh {
 };
 
 constexpr double kSnapShare = 0.25;  // x its shortest edge: a vertex that near the plane moves onto it
+constexpr double kSideShare = 0.05;  // x a side's length: a corner that near a flat side splits that side
 
 // The corner as a vertex: the nearest vertex when it is one, or when it is a vertex of a flat neighbourhood
 // within kSnapShare of its shortest edge from it (moved there); else the facet or edge split at it.
@@ -124,8 +125,25 @@ int insert_corner(SplitMesh& m, const MeshTopology& mesh, std::vector<int>& face
   const auto f = m.tris[best];
   for (int k = 0; k < 3; ++k)
     if ((m.points[f[k]] - q).norm() <= slack) return f[k];
-  for (int k = 0; k < 3 && (region < 1 || region > 3); ++k)  // within a hair of a side: on it (no sliver)
-    if ((closest_point_on_segment(q, m.points[f[k]], m.points[f[(k + 1) % 3]], nullptr) - q).norm() <= slack) region = k + 1;
+  // Within a hair of a side, or within kSideShare of its length where the facets on both sides lie in one
+  // plane: the side is split at the corner (no sliver between the corner and the side).
+  auto flat_across = [&](int a, int b) {
+    Vec3 n[2];
+    int count = 0;
+    for (size_t t = 0; t < m.tris.size() && count < 2; ++t) {
+      if (m.gone[t]) continue;
+      const auto& g = m.tris[t];
+      for (int j = 0; j < 3; ++j)
+        if ((g[j] == a && g[(j + 1) % 3] == b) || (g[j] == b && g[(j + 1) % 3] == a))
+          n[count++] = (m.points[g[1]] - m.points[g[0]]).cross(m.points[g[2]] - m.points[g[0]]).normalized();
+    }
+    return count == 2 && n[0].dot(n[1]) > 1 - 1e-6;
+  };
+  for (int k = 0; k < 3 && (region < 1 || region > 3); ++k) {
+    const Vec3 &a = m.points[f[k]], &b = m.points[f[(k + 1) % 3]];
+    const double off = (closest_point_on_segment(q, a, b, nullptr) - q).norm();
+    if (off <= slack || (off <= kSideShare * (b - a).norm() && flat_across(f[k], f[(k + 1) % 3]))) region = k + 1;
+  }
   if (region >= 1 && region <= 3) {  // on edge (f[k], f[k+1]): split both facets on it
     const int k = region - 1, a = f[k], b = f[(k + 1) % 3];
     const int x = m.add(q);
@@ -312,10 +330,10 @@ bool split_along_end_segments(const MeshTopology& mesh, const std::vector<EndSeg
     if (q < 0 || q == p) continue;
     split_crossed(m, facets, seg.cut, p, q, slack);
   }
-  const bool changed = m.points.size() > size_t(mesh.num_vertices()) ||
-                       std::any_of(m.gone.begin(), m.gone.end(), [](char g) { return g != 0; });
-  if (!changed) return false;
   const int n = mesh.num_vertices(), facets = mesh.num_facets();
+  bool changed = m.points.size() > size_t(n) || std::any_of(m.gone.begin(), m.gone.end(), [](char g) { return g != 0; });
+  for (int v = 0; v < n && !changed; ++v) changed = m.points[size_t(v)] != mesh.point(v);  // a vertex moved onto the corner
+  if (!changed) return false;
   std::vector<int> removed;
   std::vector<std::array<int, 3>> added;
   for (size_t t = 0; t < m.tris.size(); ++t) {

@@ -16,6 +16,7 @@ Mesh precision.  Mesh.Mesh stores float32 points, so a mesh handed to MeshRound 
 round trip would give (the test checks this); no STL round trip is made.
 """
 import functools
+import hashlib
 import math
 import sys
 
@@ -31,6 +32,21 @@ import numpy as np  # noqa: E402
 
 V = FreeCAD.Vector
 TOL = 1e-7  # mm: "on" for CAD coordinates built here
+
+_MESHES = {}  # (the solid's BRep digest, mesher options) -> its mesh, for mesh_of
+
+
+def mesh_of(shape, **options):
+    """MeshPart.meshFromShape(Shape=shape, **options), each solid meshed once a test session: a fine mesh of
+    the pocket block takes the mesher most of a minute, and many cases share one solid (known by its
+    vertices, faces, edges, volume and area).  A copy is returned (a test may change its mesh)."""
+    geometry = sorted((round(v.X, 6), round(v.Y, 6), round(v.Z, 6)) for v in shape.Vertexes)
+    geometry += [(len(shape.Faces), len(shape.Edges), round(shape.Volume, 6), round(shape.Area, 6))]
+    key = (hashlib.sha1(repr(geometry).encode()).hexdigest(), tuple(sorted(options.items())))
+    if key not in _MESHES:
+        _MESHES[key] = MeshPart.meshFromShape(Shape=shape, **options)
+    return _MESHES[key].copy()
+
 
 # Mesh variants of the sharp solid; MaxLength is relative to the case's largest radius.
 MESH_VARIANTS = {
@@ -413,7 +429,7 @@ class Case:
             kw = dict(MESH_VARIANTS[variant])
             if "MaxLength" in kw:
                 kw["MaxLength"] *= self.r_max
-            self._meshes[variant] = MeshPart.meshFromShape(Shape=self.solid, **kw)
+            self._meshes[variant] = mesh_of(self.solid, **kw)
         return self._meshes[variant]
 
     def __repr__(self):

@@ -13,7 +13,6 @@ import pytest
 
 import cases
 import FreeCAD
-import MeshPart
 import Part
 import reference
 import soundness
@@ -78,7 +77,7 @@ def skewed_pyramid():
 def test_four_rounds_whose_faces_have_no_common_ball_are_refused_by_name():
     solid, edges = skewed_pyramid()
     assert len(edges) == 4
-    mesh = MeshPart.meshFromShape(Shape=solid, MaxLength=1.6)
+    mesh = cases.mesh_of(solid, MaxLength=1.6)
     before = (mesh.Topology, mesh.CountFacets)
     with pytest.raises(MeshRound.RoundingError) as err:
         MeshRound.round_edges(mesh, edge_middles(edges), R, tolerance=TOL)
@@ -94,9 +93,9 @@ def test_a_clean_input_is_never_blamed(element, radius):
     that finds the mesh an earlier pass of the call made unfit reports result_invalid."""
     solid, edges = cases.pyramid()
     if element:
-        mesh = MeshPart.meshFromShape(Shape=solid, MaxLength=element)
+        mesh = cases.mesh_of(solid, MaxLength=element)
     else:
-        mesh = MeshPart.meshFromShape(Shape=solid, **cases.MESH_VARIANTS["cad"])
+        mesh = cases.mesh_of(solid, **cases.MESH_VARIANTS["cad"])
     V0, F0 = meshconv.mesh_to_arrays(mesh)
     try:
         res = MeshRound.round_edges(mesh, edge_middles(edges), radius)
@@ -111,7 +110,7 @@ def test_a_flipped_facet_near_the_apex_is_named_as_the_inputs():
     """A flipped facet beside the apex that the first chains' passes do not reach: a later pass meets it,
     and the refusal still names the input's fault (non_manifold_input), not the call's own mesh."""
     solid, edges = cases.pyramid()
-    V0, F0 = meshconv.mesh_to_arrays(MeshPart.meshFromShape(Shape=solid, MaxLength=1.6))
+    V0, F0 = meshconv.mesh_to_arrays(cases.mesh_of(solid, MaxLength=1.6))
     near = int(np.linalg.norm(V0[F0].mean(axis=1) - [28, 28, 26], axis=1).argmin())
     F1 = F0.copy()
     F1[near] = F1[near][[0, 2, 1]]

@@ -8,7 +8,6 @@ three rounds tangentially (0 deg). Deviations are held to the tolerance, r / 100
 import pytest
 
 import cases
-import MeshPart
 import Part
 
 import MeshRound
@@ -34,7 +33,7 @@ def wall_crease_deg(solid, corner):
 @pytest.mark.parametrize("draft, element", [(0.0, 1.0), (10.0, 0.8)])
 def test_a_pocket_rim_reports_its_four_mitres(draft, element):
     solid = cases.pocket_block(draft)
-    mesh = MeshPart.meshFromShape(Shape=solid, MaxLength=element)
+    mesh = cases.mesh_of(solid, MaxLength=element)
     r = 2.0
     res = MeshRound.round_edges(mesh, RIM_SEEDS, r)
     corners = res.report["corners"]
@@ -57,7 +56,7 @@ def test_a_pocket_rim_reports_its_four_mitres(draft, element):
 def test_a_box_corner_reports_its_sphere_patch_tangent_to_the_rounds():
     box = Part.makeBox(100, 60, 40)
     r = 5.0
-    res = MeshRound.round_edges(MeshPart.meshFromShape(Shape=box, MaxLength=2.0),
+    res = MeshRound.round_edges(cases.mesh_of(box, MaxLength=2.0),
                                 [V(50, 60, 40), V(100, 30, 40), V(100, 60, 20)], r)
     (c,) = res.report["corners"]
     assert c["kind"] == "sphere" and sorted(c["chains"]) == [0, 1, 2]
@@ -71,7 +70,7 @@ def test_a_box_corner_reports_its_sphere_patch_tangent_to_the_rounds():
 
 def test_two_top_edges_report_the_crease_at_the_vertical_edge():
     box = Part.makeBox(100, 60, 40)
-    res = MeshRound.round_edges(MeshPart.meshFromShape(Shape=box, MaxLength=2.5), [V(50, 60, 40), V(100, 30, 40)], 5.0)
+    res = MeshRound.round_edges(cases.mesh_of(box, MaxLength=2.5), [V(50, 60, 40), V(100, 30, 40)], 5.0)
     (c,) = res.report["corners"]
     assert c["kind"] == "mitre" and sorted(c["chains"]) == [0, 1]
     assert c["deviation"] <= 0.01 * 5.0, c
@@ -90,7 +89,7 @@ def test_a_drafted_rim_mitres_on_meshes_whose_trim_lines_leave_the_lofted_edge(e
     (refused corner_not_blendable). The columns are the exact end profile now."""
     import soundness
     from MeshRound import meshconv
-    mesh = MeshPart.meshFromShape(Shape=cases.pocket_block(10.0), MaxLength=element)
+    mesh = cases.mesh_of(cases.pocket_block(10.0), MaxLength=element)
     res = MeshRound.round_edges(mesh, RIM_SEEDS, 2.0)
     assert not soundness.problems(*meshconv.mesh_to_arrays(mesh), *meshconv.mesh_to_arrays(res.mesh))
     assert len(res.report["corners"]) == 4

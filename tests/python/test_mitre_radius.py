@@ -37,7 +37,7 @@ def test_a_sliver_left_at_the_mitre_is_not_taken_for_the_fold(radius):
     so the cap beside it is a wall, not the rest of a fold: before, the cap was taken into the top's base
     mesh and the chain through the corner as turning onto it, and every radius was refused."""
     case = cases.Case(f"box_top_corner_r{radius:g}_mesh2.5", cases.box_top_corner, radius)
-    assert_rounds_like_occt(case, cases.MeshPart.meshFromShape(Shape=case.solid, MaxLength=2.5))
+    assert_rounds_like_occt(case, cases.mesh_of(case.solid, MaxLength=2.5))
 
 
 def assert_rounds_like_occt(case, mesh):
@@ -55,7 +55,7 @@ def assert_rounds_like_occt(case, mesh):
 def test_a_radius_past_the_face_is_refused_naming_it():
     """40.1 mm does not fit on the 40 mm high side faces: refused, the input intact."""
     solid, edges = cases.box_top_corner()  # (OCCT's fillet itself fails at this radius)
-    mesh = cases.MeshPart.meshFromShape(Shape=solid, MaxLength=2.5 * 40.1)
+    mesh = cases.mesh_of(solid, MaxLength=2.5 * 40.1)
     seeds = [e.valueAt(0.5 * (e.FirstParameter + e.LastParameter)) for e in edges]
     before = mesh.Topology
     with pytest.raises(MeshRound.RoundingError) as err:
@@ -67,7 +67,7 @@ def test_a_radius_past_the_face_is_refused_naming_it():
 def test_setbacks_past_most_of_the_edge_are_refused_naming_the_chain():
     """26.6 mm on the 30 mm edge: the two ends' setbacks would take more than 0.9 of it."""
     solid, edges = shallow_top_corner()
-    mesh = cases.MeshPart.meshFromShape(Shape=solid, MaxLength=2.0)
+    mesh = cases.mesh_of(solid, MaxLength=2.0)
     seeds = [e.valueAt(0.5 * (e.FirstParameter + e.LastParameter)) for e in edges]
     with pytest.raises(MeshRound.RoundingError) as err:
         MeshRound.round_edges(mesh, seeds, 26.6)

@@ -13,7 +13,6 @@ import math
 import pytest
 
 import cases
-import MeshPart
 import reference
 
 import MeshRound
@@ -38,7 +37,7 @@ def pocket_vertices(solid, z):
 def test_the_rim_rolls_on_around_each_wall_corner(draft, element):
     solid, edges = cases.pocket_rim_walls(draft)()
     assert len(edges) == 8
-    mesh = MeshPart.meshFromShape(Shape=solid, MaxLength=element)
+    mesh = cases.mesh_of(solid, MaxLength=element)
     before = mesh.Topology
     res = MeshRound.round_edges(mesh, edge_middles(edges), R)
     assert mesh.Topology == before
@@ -98,5 +97,5 @@ def test_a_pocket_floor_mitres_its_concave_corners(element):
     a floor vertex lies exactly on a mitre's end profile, where the contact line doubles back."""
     case = cases.Case("pocket_floor", pocket_floor, R)
     assert len(case.chain) == 4
-    res = assert_like_occt(case, MeshPart.meshFromShape(Shape=case.solid, MaxLength=element))
+    res = assert_like_occt(case, cases.mesh_of(case.solid, MaxLength=element))
     assert sorted(c["kind"] for c in res.report["corners"]) == ["mitre"] * 4
