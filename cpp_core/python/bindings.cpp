@@ -244,19 +244,43 @@ const char* end_name(ChainEnd e) {
   }
 }
 
-py::list trace_chains_py(const py::array& vertices, const py::array& triangles, const py::array& seeds, double feature_angle,
-                         double search_radius) {
-  const Points V = to_points(vertices, "vertices");
-  const Triangles F = to_triangles(triangles);
-  const Points S = to_points(seeds, "seeds");
+py::list chain_list(const std::vector<SharpChain>& chains) {
   py::list out;
-  for (const SharpChain& c : guarded([&] { return find_chains(V, F, to_vecs(S), feature_angle, search_radius); })) {
+  for (const SharpChain& c : chains) {
     py::dict d;
     d["points"] = polyline(c.points);
     d["closed"] = c.closed;
     if (!c.closed) d["ends"] = py::make_tuple(end_name(c.start_end), end_name(c.end_end));
     out.append(d);
   }
+  return out;
+}
+
+py::list trace_chains_py(const py::array& vertices, const py::array& triangles, const py::array& seeds, double feature_angle,
+                         double search_radius) {
+  const Points V = to_points(vertices, "vertices");
+  const Triangles F = to_triangles(triangles);
+  const Points S = to_points(seeds, "seeds");
+  return chain_list(guarded([&] { return find_chains(V, F, to_vecs(S), feature_angle, search_radius); }));
+}
+
+// plan_network (round.h): {'chains': [as trace_chains], 'corners': [{'vertex', 'kind', 'chains'}], 'refusal': str | None}.
+py::dict plan_network_py(const py::array& vertices, const py::array& triangles, const py::array& seeds, double radius, double tolerance,
+                         double feature_angle, double reach, const py::object& radius_law) {
+  const Call c = to_call(vertices, triangles, seeds, radius, tolerance, feature_angle, reach, radius_law, 0, py::none());
+  const NetworkPlan plan = guarded([&] { return plan_network(c.V, c.F, c.seeds, c.opt); });
+  py::list corners;
+  for (const PlannedCorner& k : plan.corners) {
+    py::dict d;
+    d["vertex"] = py::make_tuple(k.vertex.x(), k.vertex.y(), k.vertex.z());
+    d["kind"] = k.kind;
+    d["chains"] = k.chains;
+    corners.append(d);
+  }
+  py::dict out;
+  out["chains"] = chain_list(plan.chains);
+  out["corners"] = corners;
+  out["refusal"] = plan.refused ? py::object(py::str(plan.refusal)) : py::object(py::none());
   return out;
 }
 
@@ -386,6 +410,9 @@ PYBIND11_MODULE(_meshround_core, m) {
         py::arg("radius_law") = py::none(), "Raise RoundingError (invalid_input) for an option out of range, as round_edges would.");
   m.def("trace_chains", &trace_chains_py, py::arg("vertices"), py::arg("triangles"), py::arg("seeds"),
         py::arg("feature_angle") = 30.0, py::arg("search_radius") = 0.0, "The sharp-edge chains the seeds select: [{'points': (c, 3), 'closed': bool}].");
+  m.def("plan_network", &plan_network_py, py::arg("vertices"), py::arg("triangles"), py::arg("seeds"), py::arg("radius"),
+        py::arg("tolerance") = 0.0, py::arg("feature_angle") = 30.0, py::arg("reach") = 3.0, py::arg("radius_law") = py::none(),
+        "What round_edges will make of the chains the seeds select: the chains, each corner's blend, or the corner it refuses.");
   bind_decks(m);
   m.def("max_radius", &max_radius_py, py::arg("vertices"), py::arg("triangles"), py::arg("seeds"), py::arg("feature_angle") = 30.0,
         py::arg("reach") = 3.0, py::arg("precision") = 1e-4, py::arg("min_stations") = 256,

@@ -2,8 +2,9 @@
 
 #include <algorithm>
 #include <array>
-#include <map>
 #include <cmath>
+#include <map>
+#include <set>
 #include <string>
 
 namespace meshround {
@@ -214,6 +215,53 @@ std::vector<RoundOptions> options_per_chain(const RoundOptions& opt, const std::
       throw RoundingError(ErrorCode::InvalidInput, "no radius control point lies on the chain picked at " + format_point(picked[k]) +
                           ": give each chain at least one (point, radius)");
   return out;
+}
+
+PickedChains pick_chains(const MeshTopology& input, const std::vector<Vec3>& seeds, const RoundOptions& opt) {
+  PickedChains out;
+  std::set<std::vector<int>> seen;
+  for (const Vec3& seed : seeds) {
+    if (!seed.allFinite()) throw RoundingError(ErrorCode::InvalidInput, "a seed has a NaN or infinite coordinate");
+    SharpChain c = trace_chain(input, seed, opt.feature_angle_deg, opt.reach * opt.max_radius());
+    std::vector<int> key = c.vertices;
+    std::sort(key.begin(), key.end());
+    if (!seen.insert(key).second) continue;
+    out.picked.push_back(seed);
+    out.chains.push_back(std::move(c));
+  }
+  return out;
+}
+
+void plan_corners(const MeshTopology& input, const PickedChains& picked, const RoundOptions& opt, NetworkPlan& plan) {
+  const std::vector<SharpChain>& chains = picked.chains;
+  auto ending_at = [&](const Vec3& point, const std::vector<size_t>& among) {  // the chains with an end there
+    std::vector<int> out;
+    for (size_t k : among) {
+      const SharpChain& c = chains[k];
+      if (!c.closed && (input.point(c.vertices.front()) == point || input.point(c.vertices.back()) == point)) out.push_back(int(k));
+    }
+    return out;
+  };
+  try {
+    std::vector<RolledCorner> rolled;
+    const std::vector<int> stage = plan_stages(input, chains, picked.picked, opt, &rolled);
+    for (const RolledCorner& c : rolled) plan.corners.push_back({c.vertex, "rolled", {int(c.odd), int(c.pair[0]), int(c.pair[1])}});
+    std::vector<size_t> first;  // the chains find_corners sees: all of them, or those made first
+    PickedChains made_first;
+    for (size_t k = 0; k < chains.size(); ++k)
+      if (rolled.empty() || stage[k] == 0) first.push_back(k), made_first.chains.push_back(chains[k]), made_first.picked.push_back(picked.picked[k]);
+    options_per_chain(opt, made_first.chains, made_first.picked);
+    std::vector<std::pair<SphereCorner, size_t>> spheres;
+    const std::vector<NetworkPart> parts = find_corners(input, made_first.chains, made_first.picked, opt, &spheres);
+    for (const auto& [corner, chain] : spheres) plan.corners.push_back({corner.vertex, "sphere", ending_at(corner.vertex, first)});
+    for (const NetworkPart& part : parts)
+      for (const CornerEnd& c : part.corners)
+        if (!c.sphere && !c.other_made) plan.corners.push_back({c.point, "mitre", ending_at(c.point, first)});
+  } catch (const RoundingError& e) {
+    if (e.code != ErrorCode::CornerNotBlendable) throw;
+    plan.refused = true;
+    plan.refusal = e.what();
+  }
 }
 
 }  // namespace meshround

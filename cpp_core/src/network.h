@@ -8,6 +8,7 @@
 
 #include "meshround/chain.h"
 #include "meshround/options.h"
+#include "meshround/round.h"
 #include "meshround/spine.h"
 #include "sphere_corner.h"
 
@@ -56,6 +57,18 @@ std::vector<int> plan_stages(const MeshTopology& input, const std::vector<SharpC
 // made yet.
 std::vector<NetworkPart> find_corners(const MeshTopology& input, const std::vector<SharpChain>& chains, const std::vector<Vec3>& picked,
                                       const RoundOptions& opt, std::vector<std::pair<SphereCorner, size_t>>* spheres);
+
+// The chains the seeds select on `input`, traced as round_edges takes them (search radius reach x r), one per
+// distinct chain (a seed on a chain picked already adds nothing), each with the seed that picked it.
+struct PickedChains {
+  std::vector<SharpChain> chains;
+  std::vector<Vec3> picked;
+};
+PickedChains pick_chains(const MeshTopology& input, const std::vector<Vec3>& seeds, const RoundOptions& opt);
+
+// The corners of the picked chains and each one's blend, by the rules round_edges uses (plan_stages, then
+// find_corners on the chains made first), into `plan` (round.h); a corner refusal is kept in the plan.
+void plan_corners(const MeshTopology& input, const PickedChains& picked, const RoundOptions& opt, NetworkPlan& plan);
 
 // Each chain's options: a radius law keeps the control points nearest to that chain (each point belongs
 // to one chain); a chain without a control point is an error, as is a point far from every chain.

@@ -80,6 +80,13 @@ void check_precision(const RoundOptions& o, double magnitude) {
                         "; the smallest tolerance that works is " + format_number(min_tolerance) + " mm");
 }
 
+// The options, the mesh's precision and the seeds, as round_edges and plan_network check them.
+void check_call(const Points& V, const std::vector<Vec3>& seeds, const RoundOptions& opt) {
+  validate_options(opt);
+  check_precision(opt, coordinate_magnitude(V));
+  if (seeds.empty()) throw RoundingError(ErrorCode::InvalidInput, "no seed given: pick a point on a sharp edge");
+}
+
 // Largest distance between the lofted surface and the exact ball at arc length s (its profile circle).
 double loft_error(const RoundingSurface& surface, const ProfileStation& exact) {
   double worst = 0;
@@ -481,33 +488,33 @@ RoundResult round_edges(const Points& V, const Triangles& F, const std::vector<V
   return round_edges_after(V, F, seeds, opt, {});
 }
 
+NetworkPlan plan_network(const Points& V, const Triangles& F, const std::vector<Vec3>& seeds, const RoundOptions& opt) {
+  check_call(V, seeds, opt);
+  const MeshTopology input(V, F);
+  const PickedChains picks = pick_chains(input, seeds, opt);
+  NetworkPlan plan;
+  plan.chains = picks.chains;
+  plan_corners(input, picks, opt, plan);
+  return plan;
+}
+
 RoundResult round_edges_after(const Points& V, const Triangles& F, const std::vector<Vec3>& seeds, const RoundOptions& opt,
                               const std::vector<ExactRound>& earlier) {
   const auto start = Clock::now();
   const CancelScope cancel_scope(opt.cancelled);
   poll_cancel();  // cancelled before the call: refused at once
-  validate_options(opt);
-  check_precision(opt, coordinate_magnitude(V));
-  if (seeds.empty()) throw RoundingError(ErrorCode::InvalidInput, "no seed given: pick a point on a sharp edge");
+  check_call(V, seeds, opt);
   RoundResult result;
   // One seed per distinct chain, found on the input; each chain is then rounded on the latest mesh.
-  std::vector<SharpChain> chains;
-  std::vector<ChainSeed> chain_seeds;
-  std::vector<Vec3> picked;
   const MeshTopology input(V, F);
-  std::set<std::vector<int>> seen;
-  for (const Vec3& seed : seeds) {
-    if (!seed.allFinite()) throw RoundingError(ErrorCode::InvalidInput, "a seed has a NaN or infinite coordinate");
-    SharpChain c = trace_chain(input, seed, opt.feature_angle_deg, opt.reach * opt.max_radius());
-    std::vector<int> key = c.vertices;
-    std::sort(key.begin(), key.end());
-    if (!seen.insert(key).second) continue;
-    // The middle of an edge of the chain picks the same chain again, even after other chains are rounded.
+  PickedChains picks = pick_chains(input, seeds, opt);
+  std::vector<SharpChain>& chains = picks.chains;
+  const std::vector<Vec3>& picked = picks.picked;
+  std::vector<ChainSeed> chain_seeds;  // the middle of an edge of each chain: it picks the same chain again, even
+  for (const SharpChain& c : chains) {  // after other chains are rounded
     const size_t i = (c.points.size() - 1) / 2;
     const size_t j = (i + 1) % c.points.size();
     chain_seeds.push_back({0.5 * (c.points[i] + c.points[j]), {c.vertices[i], c.vertices[j]}});
-    picked.push_back(seed);
-    chains.push_back(std::move(c));
   }
   auto finished = [&](RoundResult& result) {
     RoundReport& rep = result.report;

@@ -54,6 +54,21 @@ def run(work_dir):
     panel.form.feature_angle.setProperty("rawValue", 30.0)
     step("feature_angle_30_chains", len(panel.chain_wires))
 
+    # a third chain meeting both (the right top edge): the panel names the two mitres and marks them
+    panel.add_seed(FreeCAD.Vector(100, 30, 40))
+    step("corners_with_side_edge", {"text": panel.form.corners.text(), "style": panel.form.corners.styleSheet(),
+                                    "marks": [[list(p), list(c)] for p, c in panel.corner_marks()]})
+    panel.set_radius(4.0)
+    panel.law = []
+    panel.form.show_law([(50.0, 60.0, 40.0, 3.0), (50.0, 0.0, 40.0, 3.0), (100.0, 30.0, 40.0, 4.0)])
+    panel._law_edited()
+    panel.preview_now()
+    step("corners_with_a_law", {"text": panel.form.corners.text(), "style": panel.form.corners.styleSheet()})
+    panel.form.law_table.selectAll()
+    panel.form.remove_law_button.click()
+    panel.remove_seeds([2])
+    step("corners_after_remove", {"text": panel.form.corners.text(), "chains": len(panel.chain_wires)})
+
     # an impossible radius shows a red error in the panel, then a good one previews
     panel.set_radius(0.0)
     panel.preview_now()

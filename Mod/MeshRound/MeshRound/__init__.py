@@ -4,6 +4,7 @@
     res = MeshRound.round_edges(mesh, seeds, radius)              # console API -> RoundingResult
     obj = MeshRound.make_rounding(base_feature, seeds, radius)    # parametric Mesh feature "Rounding"
     wires = MeshRound.trace_chains(mesh, seeds)                   # the chains seeds select
+    plan = MeshRound.plan_network(mesh, seeds, radius)            # their corners' blends (or the refused one)
     res = MeshRound.change_radius(mesh, seeds, radius)            # an existing round to a new radius (0: sharp)
     MeshRound.quality_note(res.report)                            # why new facets are under 10 deg, if any
     deck = MeshRound.read_deck("die.k")                           # solver deck (LS-DYNA/Nastran/Abaqus) as arrays
@@ -26,6 +27,7 @@ __version__ = "0.1.0"
 _EXPORTS = {
     "round_edges": "api",
     "trace_chains": "api",
+    "plan_network": "api",
     "RoundingResult": "api",
     "quality_note": "api",
     "RoundingError": "errors",

@@ -15,13 +15,14 @@ import functools
 import math
 import time
 
+import FreeCAD
 import numpy as np
 
 from . import inputs, meshconv, meshedit, progress, shapes
 from .errors import CancelToken, RoundingError, check_cancelled, require_core
 
 __all__ = ["RoundingError", "CancelToken", "RoundingResult", "round_edges", "round_arrays", "trace_chains",
-           "trace_arrays", "quality_note"]
+           "trace_arrays", "NetworkPlan", "plan_network", "plan_arrays", "quality_note"]
 
 
 @dataclasses.dataclass
@@ -149,6 +150,45 @@ def trace_arrays(vertices, triangles, seeds, feature_angle=30.0):
     angle = inputs.feature_angle_value(feature_angle)
     found = _call_engine("trace_chains", vertices, triangles, seed_points, feature_angle=angle)
     return shapes.polyline_wires([c["points"] for c in found], [c["closed"] for c in found])
+
+
+@dataclasses.dataclass
+class NetworkPlan:
+    """What round_edges will make of the chains the seeds select, before it makes anything (plan_network)."""
+    chains: list   # Part.Wire per chain, in the order round_edges rounds them
+    corners: list  # one dict per corner: 'vertex' (FreeCAD.Vector), 'kind' ('mitre', 'sphere', 'rolled' as in
+                   # the report), 'chains' (indices into `chains`)
+    refusal: str   # None, or why round_edges would refuse a corner (its message, naming the vertex)
+
+    def summary(self):
+        """One line for a user: the corners by kind, or the refusal."""
+        if self.refusal:
+            return f"Corner not blended: {self.refusal}"
+        if not self.corners:
+            return ""
+        kinds = [k["kind"] for k in self.corners]
+        counts = ", ".join(f"{kinds.count(k)} {k}" for k in ("mitre", "sphere", "rolled") if k in kinds)
+        return f"{len(self.corners)} corner(s): {counts}"
+
+
+def plan_network(mesh, seeds, radius, tolerance=None, feature_angle=30.0, reach=3.0):
+    """The chains the seeds select and, where they meet, how each corner will be blended -- or the corner
+    round_edges would refuse, with its reason -- without rounding anything (a fraction of a second)."""
+    inputs.check_mesh(mesh)
+    vertices, triangles = meshconv.mesh_to_arrays(mesh)
+    return plan_arrays(vertices, triangles, seeds, radius, tolerance, feature_angle, reach)
+
+
+def plan_arrays(vertices, triangles, seeds, radius, tolerance=None, feature_angle=30.0, reach=3.0):
+    """plan_network for a mesh given as arrays."""
+    arguments = _engine_arguments(seeds, radius, tolerance, feature_angle, reach)
+    for unused in ("max_new_facets", "cancel"):
+        arguments.pop(unused)
+    found = _call_engine("plan_network", vertices, triangles, **arguments)
+    chains = found["chains"]
+    wires = shapes.polyline_wires([c["points"] for c in chains], [c["closed"] for c in chains])
+    corners = [dict(vertex=FreeCAD.Vector(*c["vertex"]), kind=c["kind"], chains=list(c["chains"])) for c in found["corners"]]
+    return NetworkPlan(wires, corners, found["refusal"])
 
 
 def _engine_arguments(seeds, radius, tolerance, feature_angle, reach, max_new_facets=None, cancel=None):

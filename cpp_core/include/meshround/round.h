@@ -94,6 +94,23 @@ struct RoundResult {
 
 RoundResult round_edges(const Points& V, const Triangles& F, const std::vector<Vec3>& seeds, const RoundOptions& options);
 
+// What round_edges will make of the chains the seeds select, before it makes anything (the task panel shows
+// it as the user picks): the chains as it takes them, and where they meet, each corner's blend.
+struct PlannedCorner {
+  Vec3 vertex;
+  std::string kind;         // as CornerReport::kind: "mitre", "sphere" or "rolled"
+  std::vector<int> chains;  // the chains meeting there (indices into NetworkPlan::chains)
+};
+struct NetworkPlan {
+  std::vector<SharpChain> chains;       // one per distinct chain, in the order round_edges rounds them
+  std::vector<PlannedCorner> corners;   // the corners found before the first refused one
+  bool refused = false;                 // a corner round_edges would refuse (corner_not_blendable) ...
+  std::string refusal;                  // ... and its message, naming the vertex
+};
+// Errors as round_edges for the options and seeds; corner refusals go into the plan. A rolled corner's
+// second-stage chains are traced on the first stage's result, so the plan lists the chains as picked.
+NetworkPlan plan_network(const Points& V, const Triangles& F, const std::vector<Vec3>& seeds, const RoundOptions& options);
+
 // The chains the seeds select (for highlighting a pick); one per distinct chain. A seed farther than
 // search_radius from every sharp edge is an error; <= 0 means 5% of the mesh's bounding-box diagonal.
 std::vector<SharpChain> find_chains(const Points& V, const Triangles& F, const std::vector<Vec3>& seeds,

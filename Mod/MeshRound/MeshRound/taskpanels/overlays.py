@@ -12,6 +12,11 @@ SEED_COLOR = (0.85, 0.0, 0.0)      # red: the picked seeds
 LAW_COLOR = (0.0, 0.6, 0.0)        # green: variable-radius control points
 CONTACT_COLOR = (0.1, 0.2, 0.8)    # blue: where the ball touches the two sides
 PREVIEW_COLOR = (0.55, 0.78, 0.95)  # light blue: the rounded mesh preview
+CORNER_COLORS = {                   # where picked chains meet, by the corner's blend (api.NetworkPlan)
+    "mitre": (0.6, 0.0, 0.8),       # purple
+    "sphere": (0.0, 0.55, 0.55),    # teal
+    "rolled": (0.1, 0.2, 0.8),      # blue
+}
 
 
 class Overlay:

@@ -52,6 +52,7 @@ class RoundEdgesPanel:
         self.law = list(values["law"])
         self.chain_wires, self.result, self.error = [], None, None
         self.limits = []            # max_radius of the picked chains (ChainLimit each), shown beside the radius
+        self.plan = None            # api.NetworkPlan of the picked chains when there are several (their corners)
         self._running = None        # the CancelWatch of the run under way (preview or OK), else None
         self._rerun = False         # a value changed during a preview: preview again once it stopped
         self._close_requested = False  # reject() during a run: close once it stopped
@@ -171,6 +172,8 @@ class RoundEdgesPanel:
             self.form.show_status("Click near a sharp edge of the mesh to select it.")
             return
         self._show_limit()
+        self._plan_corners()  # the radius decides some corners (four faces and one ball)
+        self._refresh_marks()
         past = self.radius_past_limit()
         if past:  # refused here, with the reason next to the field
             self._show_error(past)
@@ -368,6 +371,7 @@ class RoundEdgesPanel:
                 except RoundingError as exc:
                     self._show_error(str(exc))
         self._measure_limits()
+        self._plan_corners()
         self._refresh_marks()
         self.schedule_preview()
         if not self.seeds:
@@ -384,6 +388,23 @@ class RoundEdgesPanel:
             except RoundingError:
                 pass  # the trace's own error is shown already
         self._show_limit()
+
+    def _plan_corners(self):
+        """Where the picked chains meet and how each corner will be blended (api.plan_arrays), shown under the
+        seeds; the corner round_edges would refuse, in red, with its reason."""
+        self.plan = None
+        if len(self.chain_wires) > 1:
+            try:
+                p = self.parameters()
+                self.plan = api.plan_arrays(self.vertices, self.triangles, p["seeds"], p["radius"], p["tolerance"],
+                                            p["feature_angle"], p["reach"])
+            except (RoundingError, ValueError):
+                pass  # the trace's or the table's own error is shown already
+        self.form.show_corners(self.plan.summary() if self.plan else "", error=bool(self.plan and self.plan.refusal))
+
+    def corner_marks(self):
+        """[(point, color)]: a marker per corner of the plan, coloured by its blend."""
+        return [(tuple(c["vertex"]), overlays.CORNER_COLORS[c["kind"]]) for c in self.plan.corners] if self.plan else []
 
     def radius_past_limit(self):
         """'' or the sentence saying the constant radius is past the largest that fits (and why)."""
@@ -424,9 +445,11 @@ class RoundEdgesPanel:
     def _refresh_marks(self):
         self._update_radius_field()
         chains = [shapes.wire_points(w) for w in self.chain_wires]
+        corners = self.corner_marks()
         self._marks.show(overlays.polylines_node(chains, overlays.CHAIN_COLOR, width=5.0),
                          overlays.markers_node([tuple(s) for s in self.seeds], overlays.SEED_COLOR),
-                         overlays.markers_node([row[:3] for row in self.law], overlays.LAW_COLOR))
+                         overlays.markers_node([row[:3] for row in self.law], overlays.LAW_COLOR),
+                         *(overlays.markers_node([point], color) for point, color in corners))
 
     def _update_radius_field(self):
         """The constant radius is unused with a radius law, and fixed by an expression if it has one."""

@@ -59,6 +59,10 @@ class RoundEdgesForm(QtGui.QWidget):
         buttons.addWidget(self.remove_seed_button)
         buttons.addWidget(self.clear_seeds_button)
         layout.addLayout(buttons)
+        # where the picked chains meet, how each corner will be blended (or the one that would be refused)
+        self.corners = QtGui.QLabel("")
+        self.corners.setWordWrap(True)
+        layout.addWidget(self.corners)
         layout.addWidget(QtGui.QLabel("A click on the mesh adds:"))
         self.pick_seed = QtGui.QRadioButton("an edge to round")
         self.pick_law = QtGui.QRadioButton("a variable-radius point")
@@ -154,6 +158,11 @@ class RoundEdgesForm(QtGui.QWidget):
         """The radius limit beside the radius field; in red when the radius is past it."""
         self.radius_limit.setStyleSheet("color: #c00000; font-weight: bold;" if error else "")
         self.radius_limit.setText(text)
+
+    def show_corners(self, text, error=False):
+        """The picked chains' corners and their blends; in red for a corner that would be refused."""
+        self.corners.setStyleSheet("color: #c00000;" if error else "")
+        self.corners.setText(text)
 
     def show_status(self, text, error=False):
         self.status.setStyleSheet("color: #c00000; font-weight: bold;" if error else "")
