@@ -91,7 +91,8 @@ struct SplitMesh {
 };
 
 constexpr double kSnapShare = 0.25;  // x its shortest edge: a vertex that near the plane moves onto it
-constexpr double kSideShare = 0.05;  // x a side's length: a corner that near a flat side splits that side
+constexpr double kSideShare = 0.01;  // x a side's length: a corner that near a flat side (not near its ends) splits
+                                     // that side (the sliver it would leave has an angle under about 1 degree)
 
 // The corner as a vertex: the nearest vertex when it is one, or when it is a vertex of a flat neighbourhood
 // within kSnapShare of its shortest edge from it (moved there); else the facet or edge split at it.
@@ -141,8 +142,10 @@ int insert_corner(SplitMesh& m, const MeshTopology& mesh, std::vector<int>& face
   };
   for (int k = 0; k < 3 && (region < 1 || region > 3); ++k) {
     const Vec3 &a = m.points[f[k]], &b = m.points[f[(k + 1) % 3]];
-    const double off = (closest_point_on_segment(q, a, b, nullptr) - q).norm();
-    if (off <= slack || (off <= kSideShare * (b - a).norm() && flat_across(f[k], f[(k + 1) % 3]))) region = k + 1;
+    double t;
+    const double off = (closest_point_on_segment(q, a, b, &t) - q).norm();
+    const bool beside = t > kSideShare && t < 1 - kSideShare;  // (near an end the corner is that vertex's)
+    if (off <= slack || (beside && off <= kSideShare * (b - a).norm() && flat_across(f[k], f[(k + 1) % 3]))) region = k + 1;
   }
   if (region >= 1 && region <= 3) {  // on edge (f[k], f[k+1]): split both facets on it
     const int k = region - 1, a = f[k], b = f[(k + 1) % 3];

@@ -23,36 +23,76 @@ Vec3 in_space(const std::vector<Vec3>& P, const std::vector<Eigen::Vector2d>& Q,
   return P[0] + (x.x() - Q[0].x()) * e1 + (x.y() - Q[0].y()) * e2;
 }
 
-// Lawson flips inside the polygon: an inner diagonal is flipped when the other diagonal of its (convex)
-// quadrilateral gives a larger smallest angle; the four edges around a flipped one are checked again.
-// Boundary edges never move. With `changed` (triangles just made in a flip-stable triangulation), only
-// their edges are checked at first; the triangles flipped are added to it.
-void improve_by_flips(const std::vector<Vec3>& P, const std::vector<Eigen::Vector2d>& Q, std::vector<std::array<int, 3>>& tris,
-                      std::vector<int>* changed = nullptr) {
-  auto key = [](int a, int b) { return std::uint64_t(std::min(a, b)) << 32 | std::uint32_t(std::max(a, b)); };
-  std::unordered_map<std::uint64_t, std::array<int, 2>> sides;  // edge -> its one or two triangles
-  std::vector<std::uint64_t> todo;
-  for (int t = 0; t < int(tris.size()); ++t)
-    for (int k = 0; k < 3; ++k) {
-      auto [it, fresh] = sides.try_emplace(key(tris[t][k], tris[t][(k + 1) % 3]), std::array<int, 2>{t, -1});
-      if (!fresh && !changed) it->second[1] = t, todo.push_back(it->first);
-      if (!fresh && changed) it->second[1] = t;
-    }
-  if (changed)
-    for (int t : *changed)
-      for (int k = 0; k < 3; ++k) todo.push_back(key(tris[t][k], tris[t][(k + 1) % 3]));
-  auto replace = [&](int a, int b, int from, int to) {
-    auto& pair = sides.at(key(a, b));
+// Edge -> its one or two triangles (a polygon side has one), kept up to date through flips and insertions;
+// with a log, each change can be taken back (a refinement point that made things worse).
+class EdgeSides {
+ public:
+  static std::uint64_t key(int a, int b) { return std::uint64_t(std::min(a, b)) << 32 | std::uint32_t(std::max(a, b)); }
+
+  // Every edge of `tris`; the inner ones (two triangles) into `inner`, if given.
+  explicit EdgeSides(const std::vector<std::array<int, 3>>& tris, std::vector<std::uint64_t>* inner = nullptr) {
+    map_.reserve(3 * tris.size());
+    for (int t = 0; t < int(tris.size()); ++t)
+      for (int k = 0; k < 3; ++k) {
+        auto [it, fresh] = map_.try_emplace(key(tris[t][k], tris[t][(k + 1) % 3]), std::array<int, 2>{t, -1});
+        if (!fresh) {
+          it->second[1] = t;
+          if (inner) inner->push_back(it->first);
+        }
+      }
+  }
+  const std::array<int, 2>* find(std::uint64_t e) const {
+    const auto it = map_.find(e);
+    return it == map_.end() ? nullptr : &it->second;
+  }
+  void set(std::uint64_t e, std::array<int, 2> sides) { remember(e), map_[e] = sides; }
+  void erase(std::uint64_t e) { remember(e), map_.erase(e); }
+  // Edge (a, b) now borders `to` where it bordered `from`.
+  void replace(int a, int b, int from, int to) {
+    std::array<int, 2> pair = map_.at(key(a, b));
     (pair[0] == from ? pair[0] : pair[1]) = to;
+    set(key(a, b), pair);
+  }
+  void start_log() { log_.clear(), logging_ = true; }
+  void stop_log() { logging_ = false; }
+  void undo() {  // every change since start_log, newest first
+    for (auto it = log_.rbegin(); it != log_.rend(); ++it) {
+      if (it->had) map_[it->edge] = it->sides;
+      else map_.erase(it->edge);
+    }
+    log_.clear();
+  }
+
+ private:
+  struct Change {
+    std::uint64_t edge;
+    bool had;
+    std::array<int, 2> sides;
   };
+  void remember(std::uint64_t e) {
+    if (!logging_) return;
+    const auto it = map_.find(e);
+    log_.push_back({e, it != map_.end(), it != map_.end() ? it->second : std::array<int, 2>{-1, -1}});
+  }
+  std::unordered_map<std::uint64_t, std::array<int, 2>> map_;
+  std::vector<Change> log_;
+  bool logging_ = false;
+};
+
+// Lawson flips inside the polygon: an inner diagonal of `todo` is flipped when the other diagonal of its
+// (convex) quadrilateral gives a larger smallest angle; the four edges around a flipped one are checked
+// again. Boundary edges never move. The triangles flipped are added to `changed`, if given.
+void flip_edges(const std::vector<Vec3>& P, const std::vector<Eigen::Vector2d>& Q, std::vector<std::array<int, 3>>& tris,
+                EdgeSides& sides, std::vector<std::uint64_t> todo, std::vector<int>* changed) {
+  auto key = EdgeSides::key;
   CancelPoll poll(64);
   for (size_t flips = 0; !todo.empty() && flips < 10 * tris.size() + 100;) {
     poll.tick();
     const std::uint64_t e = todo.back();
     todo.pop_back();
-    auto it = sides.find(e);
-    if (it == sides.end() || it->second[1] < 0) continue;
-    int t = it->second[0], u = it->second[1];
+    const std::array<int, 2>* pair = sides.find(e);
+    if (!pair || (*pair)[1] < 0) continue;
+    const int t = (*pair)[0], u = (*pair)[1];
     int k = 0;  // the edge runs a -> b in t
     while (key(tris[t][k], tris[t][(k + 1) % 3]) != e) ++k;
     const int a = tris[t][k], b = tris[t][(k + 1) % 3], c = tris[t][(k + 2) % 3];
@@ -65,13 +105,25 @@ void improve_by_flips(const std::vector<Vec3>& P, const std::vector<Eigen::Vecto
     const double then = std::min(smallest_angle(P[c], P[a], P[d]), smallest_angle(P[d], P[b], P[c]));
     if (then <= now + 1e-9) continue;
     tris[t] = {c, a, d}, tris[u] = {d, b, c};
-    sides.erase(it);
-    sides[key(c, d)] = {t, u};
-    replace(a, d, u, t), replace(b, c, t, u);
+    sides.erase(e);
+    sides.set(key(c, d), {t, u});
+    sides.replace(a, d, u, t), sides.replace(b, c, t, u);
     for (std::uint64_t f : {key(a, c), key(a, d), key(b, c), key(b, d)}) todo.push_back(f);
     if (changed) changed->push_back(t), changed->push_back(u);
     ++flips;
   }
+}
+
+// Flips over the whole triangulation until no flip gains (flip_edges); with `changed` (triangles just made
+// in a flip-stable triangulation), starting at their edges only, the triangles flipped added to it.
+void improve_by_flips(const std::vector<Vec3>& P, const std::vector<Eigen::Vector2d>& Q, std::vector<std::array<int, 3>>& tris,
+                      std::vector<int>* changed = nullptr) {
+  std::vector<std::uint64_t> inner;
+  EdgeSides sides(tris, changed ? nullptr : &inner);
+  if (changed)
+    for (int t : *changed)
+      for (int k = 0; k < 3; ++k) inner.push_back(EdgeSides::key(tris[t][k], tris[t][(k + 1) % 3]));
+  flip_edges(P, Q, tris, sides, std::move(inner), changed);
 }
 
 // Where a point meant to mend triangle `w` may go, best first, each with the spacing it should keep from
@@ -135,6 +187,7 @@ void add_inner_points(std::vector<Vec3>& P, std::vector<Eigen::Vector2d>& Q, std
     return -1;
   };
   improve_by_flips(P, Q, tris);  // flip-stable from here: each point's flips start at the triangles it makes
+  EdgeSides sides(tris);          // kept up to date: a point costs its own flips, not a pass over all
   std::vector<char> hopeless(tris.size(), 0);
   // Each triangle's smallest angle, kept up to date (only the triangles a point makes or flips change).
   auto angle_of = [&](int t) { return smallest_angle(P[tris[t][0]], P[tris[t][1]], P[tris[t][2]]); };
@@ -164,11 +217,20 @@ void add_inner_points(std::vector<Vec3>& P, std::vector<Eigen::Vector2d>& Q, std
       const std::vector<std::array<int, 3>> before = tris;
       Q.push_back(x), P.push_back(to_3d(x));
       const auto h = tris[host];
+      const int t1 = int(tris.size()), t2 = t1 + 1;
       tris[host] = {h[0], h[1], k};
       tris.push_back({h[1], h[2], k});
       tris.push_back({h[2], h[0], k});
-      made = {host, int(tris.size()) - 2, int(tris.size()) - 1};
-      improve_by_flips(P, Q, tris, &made);
+      made = {host, t1, t2};
+      sides.start_log();
+      sides.replace(h[1], h[2], host, t1), sides.replace(h[2], h[0], host, t2);
+      sides.set(EdgeSides::key(h[0], k), {host, t2}), sides.set(EdgeSides::key(h[1], k), {host, t1});
+      sides.set(EdgeSides::key(h[2], k), {t1, t2});
+      std::vector<std::uint64_t> todo;
+      for (int t : made)
+        for (int j = 0; j < 3; ++j) todo.push_back(EdgeSides::key(tris[t][j], tris[t][(j + 1) % 3]));
+      flip_edges(P, Q, tris, sides, std::move(todo), &made);
+      sides.stop_log();
       const std::vector<double> angle_before = angle;
       angle.resize(tris.size());
       double made_q = INFINITY;
@@ -178,6 +240,7 @@ void add_inner_points(std::vector<Vec3>& P, std::vector<Eigen::Vector2d>& Q, std
         break;
       }
       tris = before, angle = angle_before, P.pop_back(), Q.pop_back();  // it made a triangle as bad: take it back
+      sides.undo();
     }
     if (!mended) {
       hopeless[worst] = 1;

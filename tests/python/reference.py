@@ -167,8 +167,9 @@ def exact_skin(shape, case, chain, within):
     return TriangleSet(V, near_triangles(V, F, chain, within), 0.1 * case.r_max)  # small: fans of slivers
 
 
-def face_samples(face, step):
-    """Points on a CAD face on a (u, v) grid about `step` apart, inside its trimmed domain."""
+def face_samples(face, step, keep=None):
+    """Points on a CAD face on a (u, v) grid about `step` apart, inside its trimmed domain; `keep`: a test of
+    the grid's points (array -> bool array) made before the (slower) domain test."""
     u0, u1, v0, v1 = face.ParameterRange
     length = lambda pts: sum((p - q).Length for p, q in zip(pts, pts[1:]))  # noqa: E731
     um, vm = 0.5 * (u0 + u1), 0.5 * (v0 + v1)
@@ -176,7 +177,11 @@ def face_samples(face, step):
     lv = length([face.valueAt(um, v) for v in np.linspace(v0, v1, 33)])
     us = np.linspace(u0, u1, int(np.ceil(lu / step)) + 1)
     vs = np.linspace(v0, v1, int(np.ceil(lv / step)) + 1)
-    return np.array([tuple(face.valueAt(u, v)) for u in us for v in vs if face.isPartOfDomain(u, v)]).reshape(-1, 3)
+    grid = [(u, v) for u in us for v in vs]
+    P = np.array([tuple(face.valueAt(u, v)) for u, v in grid]).reshape(-1, 3)
+    wanted = keep(P) if keep is not None else np.ones(len(P), bool)
+    inside = [i for i in np.flatnonzero(wanted) if face.isPartOfDomain(*grid[i])]
+    return P[inside]
 
 
 def round_samples(case):
@@ -307,8 +312,7 @@ def exact_geometry(case, reach):
 def sharp_samples_near(case, chain, within):
     """Points on the sharp solid's faces that touch the chain, within `within` of it, about r/10 apart."""
     faces = [f for f in case.solid.Faces if any(e.isSame(c) for e in f.Edges for c in case.chain)]
-    S = np.concatenate([face_samples(f, 0.1 * case.r_max) for f in faces])
-    return S[chain.distance(S) <= within]
+    return np.concatenate([face_samples(f, 0.1 * case.r_max, lambda P: chain.distance(P) <= within) for f in faces])
 
 
 def input_tessellation_error(case, V0, F0, geo):
