@@ -5,6 +5,7 @@ Run with Debian's interpreter (FreeCAD 0.20's modules are built for it):  /usr/b
 import os
 import sys
 
+import numpy as np
 import pytest
 
 REPO = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
@@ -35,6 +36,36 @@ BOX_RADIUS = 5.0
 
 def box_mesh(max_length=2.0):
     return MeshPart.meshFromShape(Shape=Part.makeBox(*BOX_SIZE), MaxLength=max_length)
+
+
+def grid_box(step=2.0, size=BOX_SIZE):
+    """(vertices, triangles) of a box (the standard one by default) whose faces are structured grids of
+    step x step squares, two facets each, outward."""
+    points, facets, index = [], [], {}
+
+    def vertex(p):
+        key = tuple(np.round(p, 9))
+        if key not in index:
+            index[key] = len(points)
+            points.append(key)
+        return index[key]
+
+    for axis in range(3):
+        u_axis, v_axis = [(1, 2), (2, 0), (0, 1)][axis]
+        nu, nv = round(size[u_axis] / step), round(size[v_axis] / step)
+        for high in (0, 1):
+            for i in range(nu):
+                for j in range(nv):
+                    quad = []
+                    for di, dj in ((0, 0), (1, 0), (1, 1), (0, 1)):
+                        p = np.zeros(3)
+                        p[axis] = size[axis] * high
+                        p[u_axis] = size[u_axis] * (i + di) / nu
+                        p[v_axis] = size[v_axis] * (j + dj) / nv
+                        quad.append(vertex(p))
+                    a, b, c, d = quad if high else quad[::-1]
+                    facets += [(a, b, c), (a, c, d)]
+    return np.array(points, dtype=np.float64), np.array(facets, dtype=np.int64)
 
 
 @pytest.fixture(scope="session")

@@ -17,7 +17,7 @@ import MeshRound
 from MeshRound import api, meshconv
 import die_meshes
 import soundness
-from conftest import BOX_SEED, REPO
+from conftest import BOX_SEED, REPO, grid_box
 
 ARTIFACT = os.path.join(REPO, "tests", "artifacts", "catalogue.json")
 SEED = tuple(BOX_SEED)  # the top back edge (y = 60, z = 40) of the 100 x 60 x 40 box
@@ -26,35 +26,6 @@ SEED = tuple(BOX_SEED)  # the top back edge (y = 60, z = 40) of the 100 x 60 x 4
 def mefisto_box(max_length=2.0):
     shape = Part.makeBox(100, 60, 40)
     return meshconv.mesh_to_arrays(MeshPart.meshFromShape(Shape=shape, MaxLength=max_length))
-
-
-def grid_box(step=2.0, size=(100.0, 60.0, 40.0)):
-    """A box whose faces are structured grids of step x step squares, two facets each, outward."""
-    points, facets, index = [], [], {}
-
-    def vertex(p):
-        key = tuple(np.round(p, 9))
-        if key not in index:
-            index[key] = len(points)
-            points.append(key)
-        return index[key]
-
-    for axis in range(3):
-        u_axis, v_axis = [(1, 2), (2, 0), (0, 1)][axis]
-        nu, nv = round(size[u_axis] / step), round(size[v_axis] / step)
-        for high in (0, 1):
-            for i in range(nu):
-                for j in range(nv):
-                    quad = []
-                    for di, dj in ((0, 0), (1, 0), (1, 1), (0, 1)):
-                        p = np.zeros(3)
-                        p[axis] = size[axis] * high
-                        p[u_axis] = size[u_axis] * (i + di) / nu
-                        p[v_axis] = size[v_axis] * (j + dj) / nv
-                        quad.append(vertex(p))
-                    a, b, c, d = quad if high else quad[::-1]
-                    facets += [(a, b, c), (a, c, d)]
-    return np.array(points, dtype=np.float64), np.array(facets, dtype=np.int64)
 
 
 def shifted(mesh, offset):

@@ -18,39 +18,9 @@ import Part
 import die_meshes
 import soundness
 from MeshRound import api, meshconv
-from conftest import BOX_SEED, BOX_SIZE
+from conftest import BOX_SEED, BOX_SIZE, grid_box
 
 RADIUS = 5.0
-
-
-def grid_box(h=2.0):
-    """The 100 x 60 x 40 box, each face a regular grid of h x h squares, two triangles each."""
-    points, index, facets = [], {}, []
-
-    def vid(p):
-        key = tuple(int(round(c * 1e6)) for c in p)
-        if key not in index:
-            index[key] = len(points)
-            points.append(p)
-        return index[key]
-
-    for axis in range(3):
-        for side in range(2):
-            a, b = (axis + 1) % 3, (axis + 2) % 3
-            na, nb = int(round(BOX_SIZE[a] / h)), int(round(BOX_SIZE[b] / h))
-            for i in range(na):
-                for j in range(nb):
-                    q = []
-                    for c in range(4):
-                        p = [0.0, 0.0, 0.0]
-                        p[axis] = side * BOX_SIZE[axis]
-                        p[a] = BOX_SIZE[a] * (i + (c in (1, 2))) / na
-                        p[b] = BOX_SIZE[b] * (j + (c >= 2)) / nb
-                        q.append(vid(tuple(p)))
-                    if side:
-                        q[1], q[3] = q[3], q[1]
-                    facets += [(q[0], q[1], q[2]), (q[0], q[2], q[3])]
-    return np.array(points, dtype=float), np.array(facets, dtype=np.int64)
 
 
 def cad_box():
