@@ -255,6 +255,9 @@ void check_base_meshes(const MeshTopology& mesh, const BaseMeshes& base) {
 // leaves only a strip between the trim line and the reach for grading from the round's spacing to the
 // facet's far corners.
 constexpr double kWiderReaches[] = {1.25, 1.5, 2, 3};
+// The probe is not run after a round that made more new facets than this (facets hundreds of times the
+// radius, cut by it): its roundings would cost as much again each, for a hint in the report.
+constexpr size_t kRoomProbeMaxFacets = 10000;
 
 // Where a chain is picked again on the mesh its round is made on: the middle of one of its edges, and that
 // edge's ends in this mesh (or -1: the mesh's facets are searched for it).
@@ -430,7 +433,7 @@ RoundedChain round_one_chain(const MeshTopology& mesh, const ChainSeed& seed, co
   double min_new = 180, min_input = 180;
   rep.thin_facets = count_thin_facets(mesh, edit, &min_new, &min_input);
   // Thin facets the input does not explain: would a larger reach give them room?
-  if (!is_probe && rep.thin_facets > 0 && min_input >= kThinDeg) {
+  if (!is_probe && rep.thin_facets > 0 && min_input >= kThinDeg && edit.added.size() <= kRoomProbeMaxFacets) {
     probe_reach_for_room(mesh, seed, opt, net, split, rep);
     timer.done("room");
   }

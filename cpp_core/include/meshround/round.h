@@ -39,7 +39,7 @@ struct ChainReport {
   int thin_facets = 0;         // new facets with an angle under 10 degrees
   // When there are thin facets and the input facets they replace have none: the smallest reach factor
   // (of 1.25, 1.5, 2, 3 times the one asked for) at which this chain rounds with none, and its smallest
-  // new angle there; 0 when none of those does. Large CAD facets cut by a small round leave too little
+  // new angle there; 0 when none of those does, or when the round made over 10,000 new facets (not probed). Large CAD facets cut by a small round leave too little
   // room within the reach for well-shaped facets out to their far corners.
   double reach_for_room = 0, min_angle_at_reach_for_room = 0;
 };
