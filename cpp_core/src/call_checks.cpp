@@ -53,4 +53,20 @@ void check_call(const Points& V, const std::vector<Vec3>& seeds, const RoundOpti
   if (seeds.empty()) throw RoundingError(ErrorCode::InvalidInput, "no seed given: pick a point on a sharp edge");
 }
 
+void check_facet_edges(const MeshTopology& mesh, const std::vector<int>& facets, const std::string& near) {
+  for (int f : facets)
+    for (int k = 0; k < 3; ++k) {
+      const int a = mesh.F(f, k), b = mesh.F(f, (k + 1) % 3);
+      int pair[2];
+      const int count = mesh.edge_facet_pair(a, b, pair);
+      const Vec3 mid = 0.5 * (mesh.point(a) + mesh.point(b));
+      if (count > 2)
+        throw RoundingError(ErrorCode::NonManifoldInput, "the edge at " + format_point(mid) + " near " + near +
+                            " is non-manifold (more than two facets share it); repair the mesh there first");
+      if (count == 2 && mesh.edge_direction(pair[0], a, b) == mesh.edge_direction(pair[1], a, b))
+        throw RoundingError(ErrorCode::NonManifoldInput, "the facets at " + format_point(mid) + " near " + near +
+                            " are oriented against each other (a flipped facet); repair the mesh there first");
+    }
+}
+
 }  // namespace meshround

@@ -3,6 +3,9 @@
 #pragma once
 #include <vector>
 
+#include <string>
+
+#include "meshround/mesh.h"
 #include "meshround/options.h"
 #include "meshround/types.h"
 
@@ -11,5 +14,11 @@ namespace meshround {
 // The options (validate_options), the radius and tolerance against the mesh's precision
 // (radius_too_small, naming the smallest value that works), and at least one seed.
 void check_call(const Points& V, const std::vector<Vec3>& seeds, const RoundOptions& opt);
+
+// The rounding rebuilds the facets around a chain or a corner, so they must be 2-manifold and
+// consistently oriented: refuses (non_manifold_input, naming the place) an edge of `facets` shared by
+// more than two facets, or whose two facets run it the same way (one of them is flipped: the pieces cut
+// from it would face against the round). `near` names what the place is next to ("the chain").
+void check_facet_edges(const MeshTopology& mesh, const std::vector<int>& facets, const std::string& near);
 
 }  // namespace meshround

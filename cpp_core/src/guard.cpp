@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <array>
+#include <iterator>
+#include <string>
 #include <cmath>
 #include <unordered_map>
 #include <unordered_set>
@@ -20,10 +22,10 @@ using Facet = std::array<int, 3>;
                           "); nothing was changed. Try another radius, tolerance or reach");
 }
 
-// Edge flaws among the edges with an end in `changed`, over `facets` (ids of one MeshEdit).
+// Edge flaws among the edges with an end in `changed`, over `facets` (ids of one MeshEdit): each kind's
+// edges (keys, sorted).
 struct EdgeFlaws {
-  int boundary = 0, non_manifold = 0, misoriented = 0;
-  std::uint64_t boundary_at = 0, non_manifold_at = 0, misoriented_at = 0;  // one edge of each, for messages
+  std::vector<std::uint64_t> boundary, non_manifold, misoriented;
 };
 
 EdgeFlaws edge_flaws(const std::vector<Facet>& facets, const std::unordered_set<int>& changed) {
@@ -37,15 +39,34 @@ EdgeFlaws edge_flaws(const std::vector<Facet>& facets, const std::unordered_set<
     }
   EdgeFlaws out;
   for (const auto& [key, e] : edges) {
-    if (e.first == 1) ++out.boundary, out.boundary_at = key;
-    if (e.first > 2) ++out.non_manifold, out.non_manifold_at = key;
-    if (e.first == 2 && e.second != 0) ++out.misoriented, out.misoriented_at = key;
+    if (e.first == 1) out.boundary.push_back(key);
+    if (e.first > 2) out.non_manifold.push_back(key);
+    if (e.first == 2 && e.second != 0) out.misoriented.push_back(key);
   }
+  for (auto* keys : {&out.boundary, &out.non_manifold, &out.misoriented}) std::sort(keys->begin(), keys->end());
   return out;
 }
 
 Vec3 edge_middle(const MeshEdit& edit, std::uint64_t key) {
   return 0.5 * (edit.point(int(key >> 32)) + edit.point(int(key & 0xffffffffu)));
+}
+
+// More edges of one flaw after the rounding than before refuse it: as the input's fault
+// (non_manifold_input, `input_fault` + the place + `advice`) where the input has that flaw within `reach` of a new
+// one -- the band ran over a hole or a flipped facet the chain's own checks did not see (beyond a
+// round's end, at a corner) -- else as the result's (result_invalid, `what`).
+void check_new_flaws(const MeshEdit& edit, const std::vector<std::uint64_t>& was, const std::vector<std::uint64_t>& is, double reach,
+                     const std::string& what, const std::string& input_fault, const std::string& advice = "repair the mesh there first") {
+  if (is.size() <= was.size()) return;
+  std::vector<std::uint64_t> fresh;
+  std::set_difference(is.begin(), is.end(), was.begin(), was.end(), std::back_inserter(fresh));
+  const Vec3 at = edge_middle(edit, fresh.empty() ? is.front() : fresh.front());
+  for (std::uint64_t old : was) {
+    const Vec3 p = edge_middle(edit, old);
+    if ((p - at).norm() <= reach)
+      throw InputFlaw(input_fault + format_point(p) + "; " + advice, p);
+  }
+  refuse(what, at);
 }
 
 // ---------------------------------------------------------------------------------- facet crossings
@@ -200,11 +221,12 @@ void check_result(const MeshEdit& edit, const SharpChain& chain, double reach, d
   after.insert(after.end(), edit.added.begin(), edit.added.end());
 
   const EdgeFlaws was = edge_flaws(before, changed), is = edge_flaws(after, changed);
-  if (is.boundary > was.boundary) refuse("a new boundary edge, a hole in the mesh", edge_middle(edit, is.boundary_at));
-  if (is.non_manifold > was.non_manifold)
-    refuse("a new non-manifold edge, shared by more than two facets", edge_middle(edit, is.non_manifold_at));
-  if (is.misoriented > was.misoriented)
-    refuse("new facets facing the other way from their neighbours", edge_middle(edit, is.misoriented_at));
+  check_new_flaws(edit, was.boundary, is.boundary, reach, "a new boundary edge, a hole in the mesh",
+                  "the mesh is open (a hole in it) where the rounding goes, at ", "fill the hole first");
+  check_new_flaws(edit, was.non_manifold, is.non_manifold, reach, "a new non-manifold edge, shared by more than two facets",
+                  "the mesh is non-manifold (an edge shared by more than two facets) where the rounding goes, at ");
+  check_new_flaws(edit, was.misoriented, is.misoriented, reach, "new facets facing the other way from their neighbours",
+                  "the facets are oriented against each other (a flipped facet) where the rounding goes, at ");
 
   // Where the rounding may place points: within the box of the facets it replaced, and within the reach.
   // (A variable round's end profile is tilted off its end face by up to the tolerance.)
@@ -249,6 +271,21 @@ void check_result(const MeshEdit& edit, const SharpChain& chain, double reach, d
 
   Vec3 where;
   if (find_crossing(edit, kept, slack, &where)) refuse("facets that cross each other", where);
+}
+
+bool flawed_near(const MeshTopology& mesh, const Vec3& where, double distance) {
+  for (int f = 0; f < mesh.num_facets(); ++f) {
+    bool near = false;
+    for (int k = 0; k < 3; ++k) near |= (mesh.corner(f, k) - where).norm() <= distance;
+    if (!near) continue;
+    for (int k = 0; k < 3; ++k) {
+      const int a = mesh.F(f, k), b = mesh.F(f, (k + 1) % 3);
+      int pair[2];
+      const int count = mesh.edge_facet_pair(a, b, pair);
+      if (count != 2 || mesh.edge_direction(pair[0], a, b) == mesh.edge_direction(pair[1], a, b)) return true;
+    }
+  }
+  return false;
 }
 
 }  // namespace meshround

@@ -27,4 +27,15 @@ constexpr double kDegenerateDeg = 0.01;  // smallest angle of a sound facet (the
 void check_result(const MeshEdit& edit, const SharpChain& chain, double reach, double tolerance,
                   const std::vector<SharpChain>* network = nullptr);
 
+// The refusal check_result gives where a new flaw lies next to the same flaw of its input (the band ran
+// over a hole or a flipped facet): non_manifold_input, `where` the input flaw's place.
+struct InputFlaw : RoundingError {
+  InputFlaw(const std::string& what, const Vec3& at) : RoundingError(ErrorCode::NonManifoldInput, what), where(at) {}
+  Vec3 where;
+};
+
+// Whether `mesh` has a boundary, non-manifold or flipped edge on a facet with a corner within `distance`
+// of `where` (a scan of all facets: for error paths).
+bool flawed_near(const MeshTopology& mesh, const Vec3& where, double distance);
+
 }  // namespace meshround

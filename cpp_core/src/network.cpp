@@ -7,6 +7,8 @@
 #include <set>
 #include <string>
 
+#include "call_checks.h"
+
 namespace meshround {
 
 const CornerEnd* corner_at(const NetworkPart& net, const Vec3& end_point) {
@@ -104,6 +106,10 @@ std::vector<int> plan_stages(const MeshTopology& input, const std::vector<SharpC
     want[k] = stage, asked_at[k] = at;
   };
   for (const auto& [v, ids] : ending) {
+    // A flipped or non-manifold facet at a corner would pass for another face meeting there: the input's
+    // fault, named as such before the corner is judged.
+    if (ids.size() >= 2)
+      check_facet_edges(input, std::vector<int>(input.facets_begin(v), input.facets_end(v)), "the corner at " + format_point(input.point(v)));
     if (ids.size() == 3) {
       int sign[3];
       Vec3 normals[2];

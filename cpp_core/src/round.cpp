@@ -185,25 +185,10 @@ std::vector<ProfileStation> end_cut_profiles(const SpineContext& ctx, const Radi
   return st;
 }
 
-// The rounding rebuilds the base meshes, so they must be 2-manifold and consistently oriented: refuse
-// (naming the place) an edge shared by more than two facets, or two facets that run their shared edge
-// the same way (one of them is flipped: the pieces cut from it would face against the round).
+// The base meshes are rebuilt: refuse a non-manifold or flipped edge among them (call_checks.h).
 // (Degenerate facets are refused while the base meshes are collected.)
 void check_base_meshes(const MeshTopology& mesh, const BaseMeshes& base) {
-  for (int side = 0; side < 2; ++side)
-    for (int f : base.facets[side])
-      for (int k = 0; k < 3; ++k) {
-        const int a = mesh.F(f, k), b = mesh.F(f, (k + 1) % 3);
-        int pair[2];
-        const int count = mesh.edge_facet_pair(a, b, pair);
-        const Vec3 mid = 0.5 * (mesh.point(a) + mesh.point(b));
-        if (count > 2)
-          throw RoundingError(ErrorCode::NonManifoldInput, "the edge at " + format_point(mid) +
-                              " near the chain is non-manifold (more than two facets share it); repair the mesh there first");
-        if (count == 2 && mesh.edge_direction(pair[0], a, b) == mesh.edge_direction(pair[1], a, b))
-          throw RoundingError(ErrorCode::NonManifoldInput, "the facets at " + format_point(mid) + " near the chain are oriented against each other "
-                              "(a flipped facet); repair the mesh there first");
-      }
+  for (int side = 0; side < 2; ++side) check_facet_edges(mesh, base.facets[side], "the chain");
 }
 
 // The reach factors (times the one asked for) tried when a chain's new facets have an angle under
@@ -433,6 +418,8 @@ std::vector<SharpChain> find_chains(const MeshTopology& mesh, const std::vector<
 
 RoundingError on_own_mesh(const RoundingError& e, const MeshTopology& input, const Vec3& picked, const RoundOptions& opt) {
   if (e.code != ErrorCode::NonManifoldInput && e.code != ErrorCode::NoSharpEdge) return e;
+  // A hole or a flipped facet the band ran over, there on the input too: the input's
+  if (const auto* flaw = dynamic_cast<const InputFlaw*>(&e); flaw && flawed_near(input, flaw->where, opt.max_radius())) return e;
   try {  // the same chain's base meshes on the input: a fault there is the input's, named as such
     const SharpChain chain = trace_chain(input, picked, opt.feature_angle_deg, opt.reach * opt.max_radius());
     check_base_meshes(input, collect_base_meshes(input, chain, opt.reach * opt.max_radius(), opt.feature_angle_deg));

@@ -71,8 +71,12 @@ std::vector<int> hole_loop(const MeshTopology& mesh, const std::unordered_set<in
     for (int k = 0; k < 3; ++k) {
       const int a = mesh.F(f, k), b = mesh.F(f, (k + 1) % 3);
       bool inner = false;
-      for (int g : mesh.edge_facets(a, b)) inner |= g != f && region.count(g);
+      const std::vector<int> sides = mesh.edge_facets(a, b);
+      for (int g : sides) inner |= g != f && region.count(g);
       if (inner) continue;
+      if (sides.size() == 1)  // the rounds' own checks leave no new boundary: a hole of the input's
+        throw RoundingError(ErrorCode::NonManifoldInput, "the mesh is open (a hole in it) next to the corner at " + format_point(c.vertex) +
+                            ", at " + format_point(0.5 * (mesh.point(a) + mesh.point(b))) + "; fill the hole first");
       if (!next.emplace(a, b).second) not_blendable(c, "the corner's boundary touches itself at " + format_point(mesh.point(a)));
     }
   if (next.empty()) not_blendable(c, "no corner between the rounds' ends");

@@ -120,3 +120,43 @@ def test_a_flipped_facet_near_the_chain_is_refused(box_arrays, where):
     f = int(np.argmin(np.linalg.norm(V[F].mean(axis=1) - np.array(where), axis=1)))
     F[f] = F[f][[0, 2, 1]]
     assert_refused(V, F, BOX_SEED, RADIUS, "non_manifold_input", r"near the chain are oriented against each other \(a flipped facet\)")
+
+
+# ------------------------------------------------------- 6. a hole or a flipped facet at a corner
+# Two rounds meeting in a mitre (the vertical edge left sharp) and three in a sphere corner, at the box's
+# corner (100, 60, 40). The facets around a corner lie beyond the rounds' ends, where each chain's own
+# checks do not look: a flaw there is named as the input's (non_manifold_input), not as a corner that
+# cannot be made or a result that failed its check.
+CORNER_SEEDS = {"mitre": [(50.0, 60.0, 40.0), (100.0, 30.0, 40.0)],
+                "sphere": [(50.0, 60.0, 40.0), (100.0, 30.0, 40.0), (100.0, 60.0, 20.0)]}
+NEAR_CORNER = [(100.0, 58.0, 39.5), (100.0, 56.5, 37.5), (99.0, 59.5, 38.5), (97.0, 57.0, 40.0), (100.0, 55.5, 35.5)]
+NEAR_CORNER_IDS = ["at-vertex", "side-2mm", "back-1mm", "top-3mm", "side-contact"]
+
+
+@pytest.mark.parametrize("blend", ["mitre", "sphere"])
+@pytest.mark.parametrize("where", NEAR_CORNER, ids=NEAR_CORNER_IDS)
+def test_a_hole_at_a_corner_is_named_as_the_inputs_or_rounded_soundly(box_arrays, blend, where):
+    V, F = box_arrays
+    F = without_facets_near(V, F, where, 1)
+    F_before = F.copy()
+    try:
+        result = api.round_arrays(V, F, CORNER_SEEDS[blend], RADIUS)
+    except MeshRound.RoundingError as error:
+        assert np.array_equal(F, F_before)
+        if error.code == "radius_too_large":  # the ball would touch the hole's edge, as beside one chain
+            assert "mesh boundary at (" in str(error), str(error)
+        else:
+            assert error.code == "non_manifold_input", str(error)
+            assert "the mesh is open" in str(error), str(error)
+    else:
+        assert_sound(V, F, result)  # the hole lay inside the rounds and went with them
+
+
+@pytest.mark.parametrize("blend", ["mitre", "sphere"])
+@pytest.mark.parametrize("where", NEAR_CORNER, ids=NEAR_CORNER_IDS)
+def test_a_flipped_facet_at_a_corner_is_named_as_the_inputs(box_arrays, blend, where):
+    V, F = box_arrays
+    F = F.copy()
+    f = int(np.argmin(np.linalg.norm(V[F].mean(axis=1) - np.array(where), axis=1)))
+    F[f] = F[f][[0, 2, 1]]
+    assert_refused(V, F, CORNER_SEEDS[blend], RADIUS, "non_manifold_input", r"oriented against each other \(a flipped facet\)")

@@ -393,14 +393,20 @@ class RoundEdgesPanel:
         """Where the picked chains meet and how each corner will be blended (api.plan_arrays), shown under the
         seeds; the corner round_edges would refuse, in red, with its reason."""
         self.plan = None
+        fault = ""  # a flaw of the mesh at a corner (a flipped facet there), which no other line shows
         if len(self.chain_wires) > 1:
             try:
                 p = self.parameters()
                 self.plan = api.plan_arrays(self.vertices, self.triangles, p["seeds"], p["radius"], p["tolerance"],
                                             p["feature_angle"], p["reach"])
-            except (RoundingError, ValueError):
-                pass  # the trace's or the table's own error is shown already
-        self.form.show_corners(self.plan.summary() if self.plan else "", error=bool(self.plan and self.plan.refusal))
+            except RoundingError as e:
+                fault = str(e) if e.code == "non_manifold_input" else ""  # others: the trace's own, shown already
+            except ValueError:
+                pass  # the table's own error is shown already
+        if fault:
+            self.form.show_corners("Corner not blended: " + fault, error=True)
+        else:
+            self.form.show_corners(self.plan.summary() if self.plan else "", error=bool(self.plan and self.plan.refusal))
 
     def corner_marks(self):
         """[(point, color)]: a marker per corner of the plan, coloured by its blend."""
