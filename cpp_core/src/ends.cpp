@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <array>
+#include <exception>
 #include <cmath>
 #include <unordered_map>
 
@@ -15,6 +16,15 @@ namespace {
 constexpr double kCoplanarDeg = 2;       // the end face's facets at the vertex agree within this
 constexpr double kMinCrossing = 0.3;     // |cos| between the chain and the plane's normal, at least
 constexpr double kSetbackSlack = 0.02;   // x r added to a nonzero setback (the last ball clear of the wall)
+
+// The share of a chain its two ends' setbacks may take: the rest, the balls' own stretch, must hold
+// its profile stations. At a sphere corner the rounds' ends are measured on balls that stand clear of the
+// other rounds only up to half a chain (longer setbacks are refused, naming the chain).
+constexpr double kMaxSetbackShare = 0.9, kMaxSetbackShareAtSphere = 0.5;
+// At a sphere corner the end's ball is measured this share of the radius before the corner's plane: on
+// the plane its contacts are the corner ball's feet, where the rounds made before end (their facets are
+// walls to this round's base meshes).
+constexpr double kSphereMeasureInset = 1e-3;
 
 }  // namespace
 
@@ -348,6 +358,55 @@ bool split_along_end_segments(const MeshTopology& mesh, const std::vector<EndSeg
     if (m.points[size_t(v)] != mesh.point(v)) moved.push_back({v, m.points[size_t(v)]});
   delta = make_delta(mesh, std::move(removed), moved, std::vector<Vec3>(m.points.begin() + n, m.points.end()), added);
   return true;
+}
+
+EndPlan plan_ends(const SpineContext& ctx, const RadiusLaw& law, const NetworkPart& net) {
+  const SharpChain& chain = ctx.chain;
+  const double L = chain.length;
+  EndPlan plan;
+  EndCut* cut = plan.cut;
+  double* setback = plan.setback;
+  bool at_sphere = false;
+  for (int end = 0; end < 2 && !chain.closed; ++end) {
+    cut[end] = end_face_cut(ctx.mesh, chain, ctx.base, end == 0);
+    const CornerEnd* corner = corner_at(net, end ? chain.points.back() : chain.points.front());
+    if (corner) {
+      const Vec3 out = end ? chain.tangent_at(L) : Vec3(-chain.tangent_at(0));
+      cut[end] = EndCut{true, corner->plane_point, out.dot(corner->normal) > 0 ? corner->normal : Vec3(-corner->normal), out};
+    }
+    if (!cut[end].active) continue;
+    // Measured on a ball clear of the end face (the one at the end may already lean on it); at a sphere
+    // corner, on the ball at its plane or before it (one past it would stand on the other rounds' faces).
+    double to_end = std::min(2 * law.max_radius(), 0.25 * L);
+    if (corner && corner->sphere)
+      to_end = std::min(L, std::max(to_end, cut[end].past(end ? chain.points.back() : chain.points.front()) + kSphereMeasureInset * law.max_radius()));
+    at_sphere |= corner && corner->sphere;
+    // A radius over a quarter of the chain can put that ball where the balls of the other end stop short
+    // of a mitre, on the other round's side (refused there as too large). Then balls elsewhere on the
+    // chain are measured (on a chain of one section the setback is the same from any of them): further
+    // along, as far as a setback may reach, then nearer this end. None clear: the first one's refusal.
+    std::vector<double> tries{to_end};
+    if (!(corner && corner->sphere))
+      for (double share : {0.5, 0.75, kMaxSetbackShare, 0.1, 0.05})
+        if (std::abs(share * L - to_end) > 1e-9 * L) tries.push_back(share * L);
+    std::exception_ptr first_refusal;
+    for (size_t k = 0; k < tries.size(); ++k) {
+      try {
+        setback[end] = end_cut_setback(solve_station(ctx, law, end ? L - tries[k] : tries[k]), tries[k], cut[end]);
+        first_refusal = nullptr;
+        break;
+      } catch (const RoundingError& e) {
+        if (e.code != ErrorCode::RadiusTooLarge) throw;
+        if (!first_refusal) first_refusal = std::current_exception();
+      }
+    }
+    if (first_refusal) std::rethrow_exception(first_refusal);
+  }
+  if (setback[0] + setback[1] > (at_sphere ? kMaxSetbackShareAtSphere : kMaxSetbackShare) * L)
+    throw RoundingError(ErrorCode::RadiusTooLarge, "the chain through " + format_point(chain.point_at(0.5 * L)) + " is too short for its round to "
+                        "run on to the end faces leaning over it (" + format_number(setback[0] + setback[1]) + " mm of its " +
+                        format_number(L) + " mm); try a smaller radius");
+  return plan;
 }
 
 }  // namespace meshround

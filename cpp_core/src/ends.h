@@ -10,6 +10,7 @@
 #include "meshround/mesh_delta.h"
 #include "meshround/spine.h"
 #include "meshround/surface.h"
+#include "network.h"
 
 namespace meshround {
 
@@ -21,6 +22,18 @@ EndCut end_face_cut(const MeshTopology& mesh, const SharpChain& chain, const Bas
 // reaches the plane (none of it starts past the plane): 0 for a plane square to the chain's end.
 // `inside`: a ball `to_end` short of the end (the chain's end is straight: balls there are translates).
 double end_cut_setback(const ProfileStation& inside, double to_end, const EndCut& cut);
+
+// How a chain's round ends: each open end's cut -- its end face's plane (end_face_cut), or the plane of a
+// corner with another picked chain (network.h) -- and how far before it the balls stop (the setback; the
+// last ball is carried on along the chain onto the plane). Refuses a ball there that does not fit
+// (radius_too_large), and setbacks that leave too little of the chain for its balls (radius_too_large too:
+// a smaller radius has shorter setbacks).
+// The one rule round_edges rounds by and max_radius measures by.
+struct EndPlan {
+  EndCut cut[2];
+  double setback[2] = {0, 0};
+};
+EndPlan plan_ends(const SpineContext& ctx, const RadiusLaw& law, const NetworkPart& net);
 
 // Where a side's base mesh goes on past a capped end's plane (a pocket's top face around its corner),
 // the band's corner there must run along mesh edges: the segment from the chain's end vertex to the

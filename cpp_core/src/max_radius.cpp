@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <memory>
 #include <random>
 #include <unordered_set>
@@ -10,6 +11,8 @@
 #include "meshround/options.h"
 #include "meshround/round.h"
 #include "meshround/spine.h"
+#include "ends.h"
+#include "network.h"
 
 namespace meshround {
 
@@ -23,6 +26,7 @@ const char* room_limit_name(RoomLimit why) {
     case RoomLimit::Boundary: return "boundary";
     case RoomLimit::Reach: return "reach";
     case RoomLimit::NoBall: return "no_ball";
+    case RoomLimit::EndSetback: return "end_setback";
   }
   return "none";
 }
@@ -73,6 +77,7 @@ struct Bracket {
   double lo = 0, hi = INFINITY, s = 0;
   StationFit fit;
   ProfileStation ball;
+  bool at_end = false;  // refused by the chain's end plan (EndSetback), not by the ball at s
 };
 
 // Another picked chain that bounds one side of this chain's (no shared vertex: chains meeting at a corner
@@ -86,12 +91,38 @@ struct Neighbour {
   std::unique_ptr<SpineContext> ctx;
 };
 
+// How an open chain's round ends for radius r, as round_edges plans it (ends.h plan_ends): `corners` gives
+// the chain's corners with the other picked chains at r. The last r's plan is kept.
+struct Ends {
+  std::function<NetworkPart(double)> corners;
+  double r = -1;
+  bool fits = true;
+  EndPlan plan;
+  const EndPlan* at(const SpineContext& ctx, double radius) {
+    if (radius != r) {
+      r = radius;
+      try {
+        RoundOptions constant;
+        constant.radius = radius;
+        plan = plan_ends(ctx, RadiusLaw(constant, ctx.chain, 0), corners(radius));
+        fits = true;
+      } catch (const RoundingError& e) {
+        if (e.code != ErrorCode::RadiusTooLarge && e.code != ErrorCode::CornerNotBlendable && e.code != ErrorCode::BeyondReach) throw;
+        fits = false;
+      }
+    }
+    return fits ? &plan : nullptr;
+  }
+};
+
 struct Scan {
   const SpineContext& ctx;
   Collected& collected;
   double reach, precision;
   std::vector<Neighbour>& neighbours;
+  Ends& ends;
   int solved = 0;
+  bool end_refused = false;  // the last fits() was refused by the end plan
 
   // The other round's band on the shared face reaches this contact: a misfit on the neighbour's edge.
   bool in_neighbour_band(const ProfileStation& ball, double r, StationFit* fit) {
@@ -119,9 +150,15 @@ struct Scan {
 
   bool fits(double s, double r, StationFit* fit, ProfileStation* ball) {
     collected.base.reach_distance = reach * r;  // what round_edges collects for r
+    end_refused = false;
+    const EndPlan* plan = ctx.chain.closed ? nullptr : ends.at(ctx, r);
+    // Within an end's setback no ball is solved: the last one is carried on to the end's plane.
+    if (plan && (s < plan->setback[0] || s > ctx.chain.length - plan->setback[1])) return true;
     ++solved;
     *ball = fit_station(ctx, s, r, fit);
-    return fit->misfit == StationMisfit::Fits && !in_neighbour_band(*ball, r, fit);
+    if (fit->misfit != StationMisfit::Fits || in_neighbour_band(*ball, r, fit)) return false;
+    // The ball at s fits, but the ends cannot be made for r (a refusal the station's own misfit names first).
+    return ctx.chain.closed || plan || !(end_refused = true);
   }
 
   Bracket run(const std::vector<double>& stations, double cap) {
@@ -132,11 +169,11 @@ struct Scan {
     for (double s : stations) {
       poll_cancel();
       if (fits(s, b.lo, &fit, &ball)) continue;
-      Bracket n{0, b.lo, s, fit, ball};
+      Bracket n{0, b.lo, s, fit, ball, end_refused};
       while (n.hi - n.lo > precision * n.hi) {
         const double mid = 0.5 * (n.lo + n.hi);
         if (fits(s, mid, &fit, &ball)) n.lo = mid;
-        else n.hi = mid, n.fit = fit, n.ball = ball;
+        else n.hi = mid, n.fit = fit, n.ball = ball, n.at_end = end_refused;
       }
       b = n;
     }
@@ -167,6 +204,7 @@ RoomLimit wall_kind(const MeshTopology& mesh, const BaseMeshes& base, const Stat
 }
 
 RoomLimit limit_kind(const MeshTopology& mesh, const BaseMeshes& base, const Bracket& b, const std::unordered_set<std::uint64_t>& other_chains) {
+  if (b.at_end) return RoomLimit::EndSetback;
   switch (b.fit.misfit) {
     case StationMisfit::Wall: return wall_kind(mesh, base, b.fit, b.ball, other_chains);
     case StationMisfit::BeyondReach: return RoomLimit::Reach;
@@ -201,7 +239,7 @@ std::vector<Neighbour> neighbours_of(const MeshTopology& mesh, const SharpChain&
 }
 
 ChainRoom measure_chain(const MeshTopology& mesh, const SharpChain& chain, const std::vector<const SharpChain*>& others,
-                        const std::unordered_set<std::uint64_t>& other_chains, const MaxRadiusOptions& o, double size) {
+                        const std::unordered_set<std::uint64_t>& other_chains, Ends& ends, const MaxRadiusOptions& o, double size) {
   ChainRoom room;
   room.chain = chain.points;
   room.closed = chain.closed;
@@ -213,7 +251,8 @@ ChainRoom measure_chain(const MeshTopology& mesh, const SharpChain& chain, const
     std::unique_ptr<Collected> c = collect(mesh, chain, reach_distance, o.feature_angle_deg);
     const SpineContext ctx{mesh, chain, c->base, {c->distance[0].get(), c->distance[1].get()}};
     std::vector<Neighbour> neighbours = neighbours_of(mesh, chain, c->base, others, reach_distance, o.feature_angle_deg);
-    Scan scan{ctx, *c, o.reach, o.precision, neighbours};
+    Scan scan{ctx, *c, o.reach, o.precision, neighbours, ends};
+    ends.r = -1;  // planned anew on these base meshes
     const Bracket b = scan.run(stations, cap);
     room.balls_solved += scan.solved;
     room.collections += 1;
@@ -221,9 +260,9 @@ ChainRoom measure_chain(const MeshTopology& mesh, const SharpChain& chain, const
     if (b.hi == INFINITY) break;  // everything up to cap fits (the first round: up to the mesh's size)
     room.radius_refused = b.hi;
     room.why = limit_kind(mesh, c->base, b, other_chains);
-    room.where = b.fit.at;
-    room.side = b.fit.side;
-    room.chain_point = chain.point_at(b.s);
+    room.where = b.at_end ? chain.point_at(b.s < 0.5 * chain.length ? 0 : chain.length) : b.fit.at;
+    room.side = b.at_end ? -1 : b.fit.side;
+    room.chain_point = b.at_end ? room.where : chain.point_at(b.s);
     if (room.why == RoomLimit::Curvature) room.curvature_radius = 1 / chain_curvature(chain, b.s, b.hi).norm();
     if (cap <= kCollectAgain * b.hi) break;  // collected for about this radius: what round_edges sees
     cap = kCollectMargin * b.hi;
@@ -255,7 +294,22 @@ std::vector<ChainRoom> max_radius(const Points& V, const Triangles& F, const std
       others.push_back(&c);
       for (int i = 0; i < c.num_edges(); ++i) other_edges.insert(edge_key(c.vertices[i], c.vertices[(i + 1) % c.vertices.size()]));
     }
-    out.push_back(measure_chain(mesh, chains[k], others, other_edges, o, size));
+    // The chain's corners with the others at radius r, as round_edges finds them (network.h); where
+    // they are not made (mixed convexity, a chain ending on another's side), its ends are end faces.
+    Ends ends;
+    ends.corners = [&, k](double r) {
+      RoundOptions at_r = checked;
+      at_r.radius = r;
+      std::vector<Vec3> picked;
+      for (const SharpChain& c : chains) picked.push_back(c.point_at(0.5 * c.length));
+      std::vector<std::pair<SphereCorner, size_t>> spheres;
+      try {
+        return find_corners(mesh, chains, picked, at_r, &spheres)[k];
+      } catch (const RoundingError&) {
+        return NetworkPart{};
+      }
+    };
+    out.push_back(measure_chain(mesh, chains[k], others, other_edges, ends, o, size));
   }
   return out;
 }

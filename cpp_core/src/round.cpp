@@ -53,18 +53,6 @@ double loft_error(const RoundingSurface& surface, const ProfileStation& exact) {
   return worst;
 }
 
-// The ball at arc length s; when a radius law makes it impossible, the error names the control point.
-ProfileStation station(const SpineContext& ctx, const RadiusLaw& law, double s) {
-  poll_cancel();
-  try {
-    return solve_station(ctx, s, law.at(s));
-  } catch (const RoundingError& e) {
-    const std::string control = law.nearest_control(s);
-    if (control.empty()) throw;
-    throw RoundingError(e.code, std::string(e.what()) + " (radius law, nearest to " + control + ")");
-  }
-}
-
 // Profiles along the chain: uniform to start with, then wherever the loft strays from the exact ball.
 // Each station is at least two facets of the round (a quad between it and the next): stations count
 // against the work budget as two facets, checked before they are solved.
@@ -80,7 +68,7 @@ std::vector<ProfileStation> sample_profiles(const SpineContext& ctx, const Radiu
   std::vector<ProfileStation> st;
   for (int i = 0; i < n0; ++i) {
     const double s = chain.closed ? L * i / n0 : s_lo + span * i / (n0 - 1);
-    st.push_back(station(ctx, law, s));
+    st.push_back(solve_station(ctx, law, s));
   }
   // Stations closer than a quarter radius are not resolved further: where a coarse mesh's crease makes
   // the contact jump (the ball pivots about one centre), a finer spacing only makes the loft ring.
@@ -94,7 +82,7 @@ std::vector<ProfileStation> sample_profiles(const SpineContext& ctx, const Radiu
       const double a = st[i].s, b = i + 1 < st.size() ? st[i + 1].s : L;
       if (b - a < min_step) continue;
       const double s = 0.5 * (a + b);
-      ProfileStation mid = station(ctx, law, s);
+      ProfileStation mid = solve_station(ctx, law, s);
       const double e = loft_error(surface, mid);
       *loft_deviation = std::max(*loft_deviation, e);
       if (e > 0.1 * tolerance) extra.push_back(mid);
@@ -108,65 +96,15 @@ std::vector<ProfileStation> sample_profiles(const SpineContext& ctx, const Radiu
 }
 
 
-// The share of a chain its two ends' setbacks may take: the rest, the balls' own stretch, must hold
-// its profile stations. At a sphere corner the rounds' ends are measured on balls that stand clear of the
-// other rounds only up to half a chain (longer setbacks are refused, naming the chain).
-constexpr double kMaxSetbackShare = 0.9, kMaxSetbackShareAtSphere = 0.5;
-// At a sphere corner the end's ball is measured this share of the radius before the corner's plane: on
-// the plane its contacts are the corner ball's feet, where the rounds made before end (their facets are
-// walls to this round's base meshes).
-constexpr double kSphereMeasureInset = 1e-3;
-
-// The profiles of a chain's round, its capped ends cut by their end faces (ends.h): where an end face
-// leans over the round, the balls stop short of it (their setback) and the last one is carried on along
-// the chain to the face; every capped end's profile is then moved onto its face's plane.
-// At a corner with another round the plane is the corner's, not the end face's.
+// The profiles of a chain's round, its capped ends cut by their end faces or corners (ends.h plan_ends):
+// the balls stop at the ends' setbacks and the last one is carried on along the chain onto the plane.
 std::vector<ProfileStation> end_cut_profiles(const SpineContext& ctx, const RadiusLaw& law, double tolerance, long max_new_facets,
                                              const NetworkPart& net, RoundingSurface& surface, double* loft_deviation) {
   const SharpChain& chain = ctx.chain;
   const double L = chain.length;
-  EndCut cut[2];
-  double setback[2] = {0, 0};
-  bool at_sphere = false;
-  for (int end = 0; end < 2 && !chain.closed; ++end) {
-    cut[end] = end_face_cut(ctx.mesh, chain, ctx.base, end == 0);
-    const CornerEnd* corner = corner_at(net, end ? chain.points.back() : chain.points.front());
-    if (corner) {
-      const Vec3 out = end ? chain.tangent_at(L) : Vec3(-chain.tangent_at(0));
-      cut[end] = EndCut{true, corner->plane_point, out.dot(corner->normal) > 0 ? corner->normal : Vec3(-corner->normal), out};
-    }
-    if (!cut[end].active) continue;
-    // Measured on a ball clear of the end face (the one at the end may already lean on it); at a sphere
-    // corner, on the ball at its plane or before it (one past it would stand on the other rounds' faces).
-    double to_end = std::min(2 * law.max_radius(), 0.25 * L);
-    if (corner && corner->sphere)
-      to_end = std::min(L, std::max(to_end, cut[end].past(end ? chain.points.back() : chain.points.front()) + kSphereMeasureInset * law.max_radius()));
-    at_sphere |= corner && corner->sphere;
-    // A radius over a quarter of the chain can put that ball where the balls of the other end stop short
-    // of a mitre, on the other round's side (refused there as too large). Then balls elsewhere on the
-    // chain are measured (on a chain of one section the setback is the same from any of them): further
-    // along, as far as a setback may reach, then nearer this end. None clear: the first one's refusal.
-    std::vector<double> tries{to_end};
-    if (!(corner && corner->sphere))
-      for (double share : {0.5, 0.75, kMaxSetbackShare, 0.1, 0.05})
-        if (std::abs(share * L - to_end) > 1e-9 * L) tries.push_back(share * L);
-    std::exception_ptr first_refusal;
-    for (size_t k = 0; k < tries.size(); ++k) {
-      try {
-        setback[end] = end_cut_setback(station(ctx, law, end ? L - tries[k] : tries[k]), tries[k], cut[end]);
-        first_refusal = nullptr;
-        break;
-      } catch (const RoundingError& e) {
-        if (e.code != ErrorCode::RadiusTooLarge) throw;
-        if (!first_refusal) first_refusal = std::current_exception();
-      }
-    }
-    if (first_refusal) std::rethrow_exception(first_refusal);
-  }
-  if (setback[0] + setback[1] > (at_sphere ? kMaxSetbackShareAtSphere : kMaxSetbackShare) * L)
-    throw RoundingError(ErrorCode::CornerNotBlendable, "the chain through " + format_point(chain.point_at(0.5 * L)) + " is too short for its round to "
-                        "run on to the end faces leaning over it (" + format_number(setback[0] + setback[1]) + " mm of its " +
-                        format_number(L) + " mm); try a smaller radius");
+  const EndPlan ends = plan_ends(ctx, law, net);
+  const EndCut* cut = ends.cut;
+  const double* setback = ends.setback;
   std::vector<ProfileStation> st = sample_profiles(ctx, law, tolerance, max_new_facets, setback[0], L - setback[1], surface, loft_deviation);
   if (!cut[0].active && !cut[1].active) return st;
   for (int end = 0; end < 2; ++end) {

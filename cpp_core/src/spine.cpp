@@ -1,6 +1,7 @@
 #include "meshround/spine.h"
 
 #include "box_tree.h"
+#include "meshround/cancel.h"
 
 #include <Eigen/Dense>
 #include <algorithm>
@@ -277,6 +278,17 @@ ProfileStation solve_station(const SpineContext& ctx, double s, double r) {
                           format_point(fit.at));
   }
   return st;
+}
+
+ProfileStation solve_station(const SpineContext& ctx, const RadiusLaw& law, double s) {
+  poll_cancel();
+  try {
+    return solve_station(ctx, s, law.at(s));
+  } catch (const RoundingError& e) {
+    const std::string control = law.nearest_control(s);
+    if (control.empty()) throw;
+    throw RoundingError(e.code, std::string(e.what()) + " (radius law, nearest to " + control + ")");
+  }
 }
 
 }  // namespace meshround

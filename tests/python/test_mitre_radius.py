@@ -71,4 +71,4 @@ def test_setbacks_past_most_of_the_edge_are_refused_naming_the_chain():
     seeds = [e.valueAt(0.5 * (e.FirstParameter + e.LastParameter)) for e in edges]
     with pytest.raises(MeshRound.RoundingError) as err:
         MeshRound.round_edges(mesh, seeds, 26.6)
-    assert err.value.code == "corner_not_blendable" and "too short" in str(err.value)
+    assert err.value.code == "radius_too_large" and "too short" in str(err.value)

@@ -104,6 +104,43 @@ def test_neighbouring_chains_share_the_face_between_them():
     assert err.value.code == "radius_too_large"
 
 
+# Networks (issue 12's corners), measured by the rules round_edges ends its rounds by (ends.h plan_ends):
+# within an end's setback no ball is solved, and the setbacks must leave room on the chain.
+#  * the square and the 10 deg drafted pocket rim (cases.pocket_block: 12 deep), four chains mitred at its
+#    corners: the wall's slant 12 / cos(draft) at r / tan((90 + draft) / 2) -> 12 and 14.516 (the contact
+#    that runs off the wall at the floor); before, the drafted rim read 0.40 (a ball near the corner
+#    touching the next wall, which the end plane cuts away);
+#  * a box corner with its three edges: the 40 mm vertical chain's sphere-corner setback r (1 + 0.02) may
+#    take half of it -> 20 / 1.02 = 19.608 (before: 39.998, the face's limit; round_edges refused 20.5).
+def rim_limit(draft_deg):
+    return 12 / math.cos(math.radians(draft_deg)) * math.tan(math.radians((90 + draft_deg) / 2))
+
+
+NETWORK_FORMS = [
+    ("square rim", lambda: cases.pocket_rim_square(0.0)(), rim_limit(0.0), "face_end"),
+    ("drafted rim", lambda: cases.pocket_rim_square(10.0)(), rim_limit(10.0), "face_end"),
+    ("box corner, three rounds", lambda: (Part.makeBox(100, 60, 40), None), 20 / 1.02, "end_setback"),
+]
+
+
+@pytest.mark.parametrize("name, build, limit, why", NETWORK_FORMS, ids=[c[0] for c in NETWORK_FORMS])
+def test_max_radius_of_a_network_matches_its_closed_form_and_the_engine(name, build, limit, why):
+    solid, edges = build()
+    seeds = ([e.valueAt(0.5 * (e.FirstParameter + e.LastParameter)) for e in edges] if edges
+             else [V(50, 60, 40), V(100, 30, 40), V(100, 60, 20)])
+    mesh = MeshPart.meshFromShape(Shape=solid, MaxLength=2.0)
+    V0, F0 = meshconv.mesh_to_arrays(mesh)
+    found = MeshRound.max_radius(mesh, seeds)
+    tightest = min(found, key=lambda f: f.radius)
+    assert abs(tightest.radius - limit) <= 0.005 * limit, (tightest.radius, limit)
+    assert tightest.why == why, tightest.reason
+    res = MeshRound.round_edges(mesh, seeds, 0.98 * tightest.radius)
+    assert soundness.problems(V0, F0, res.vertices, res.triangles) == []
+    with pytest.raises(MeshRound.RoundingError) as err:
+        MeshRound.round_edges(mesh, seeds, 1.02 * tightest.radius)
+    assert err.value.code == "radius_too_large", str(err.value)
+
+
 def test_bad_input_is_refused_with_its_code():
     mesh = MeshPart.meshFromShape(Shape=Part.makeBox(100, 60, 40), MaxLength=8.0)
     with pytest.raises(MeshRound.RoundingError) as err:

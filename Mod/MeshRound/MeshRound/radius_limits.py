@@ -31,6 +31,7 @@ WHY_TEXT = {
     "boundary": "the ball's contact reaches the mesh boundary",
     "reach": "the ball's contact lies beyond reach x r (a larger reach factor lets it go on)",
     "no_ball": "no ball touches both faces there",
+    "end_setback": "the round cannot run on to the face or corner where its chain ends (the chain is too short, or the ball does not fit there)",
 }
 
 # Rule of thumb for the smallest tool radius, as a multiple k of the sheet thickness t (check_rules).

@@ -34,6 +34,8 @@ enum class RoomLimit {
   Boundary,         // "boundary": a contact reaches the mesh boundary
   Reach,            // "reach": a contact lies beyond reach x r (a larger reach factor lets it go on)
   NoBall,           // "no_ball": no ball touches both faces (they part, or the edge is flat there)
+  EndSetback,       // "end_setback": the round cannot run on to its end face or corner plane (the ball there
+                    // does not fit, or the chain is too short for the setbacks: ends.h plan_ends)
 };
 const char* room_limit_name(RoomLimit why);
 

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "meshround/chain.h"
+#include "meshround/radius_law.h"
 
 namespace meshround {
 
@@ -99,6 +100,9 @@ ProfileStation fit_station(const SpineContext& ctx, double s, double r, StationF
 // The ball of radius r at arc length s. Throws RoundingError (naming the place) when no ball of that
 // radius fits between the base meshes there (fit_station's misfits: radius_too_large, beyond_reach).
 ProfileStation solve_station(const SpineContext& ctx, double s, double r);
+
+// The same for the radius `law` gives at s; a refusal names the control point nearest s, if any.
+ProfileStation solve_station(const SpineContext& ctx, const RadiusLaw& law, double s);
 
 // The curvature vector of the chain at arc length s as a ball of radius r sees it: from the chain point at
 // s towards the centre C of the circle through the chain's vertices nearest s and r/2 of arc length either
