@@ -200,6 +200,11 @@ void check_result(const MeshEdit& edit, const SharpChain& chain, double reach, d
                   const std::vector<SharpChain>* network) {
   const MeshTopology& in = edit.input;
   const int n_in = in.num_vertices();
+  // A point that is not a number passes every comparison below: refused first.
+  bool finite = true;
+  for (const Vec3& p : edit.new_points) finite &= p.allFinite();
+  for (const auto& moved : edit.moved) finite &= moved.second.allFinite();
+  if (!finite) refuse("a new vertex that is not a number", chain.point_at(0.5 * chain.length));
   // The changed vertices: those of removed, made and moved facets. Every edge with an end among them
   // has all its facets among the input facets around them (before) or those plus the made ones (after).
   std::unordered_set<int> changed;

@@ -6,7 +6,7 @@
 // - edges: no new boundary edge, no new non-manifold edge, no new edge whose two facets disagree in
 //   orientation (counted over every edge with an end on a changed facet: all other edges are untouched);
 // - facets: no degenerate made facet (a repeated vertex or an angle under kDegenerateDeg);
-// - placement: every new or moved vertex within the box of the input facets around the band (a round
+// - placement: every new or moved vertex finite and within the box of the input facets around the band (a round
 //   never leaves the faces it rounds), and every made facet with a corner within `reach` of the chain;
 // - self-intersection: no made facet crosses another made facet or a kept facet near it.
 // A failure throws RoundingError(result_invalid) naming the check and the place.

@@ -81,4 +81,35 @@ TEST(OutputCheck, RefusesAVertexBeyondTheFacesItRounds) {
   EXPECT_NE(s.refusal().find("beyond the faces it rounds"), std::string::npos);
 }
 
+TEST(OutputCheck, RefusesAVertexThatIsNotANumber) {
+  // A NaN point passes every comparison of the placement checks: refused on its own.
+  Scene s;
+  s.fan_around(Vec3(NAN, NAN, NAN));
+  EXPECT_NE(s.refusal().find("not a number"), std::string::npos);
+}
+
+TEST(OutputCheck, NamesANewHoleNextToAHoleOfTheInputAsTheInputs) {
+  // The input lacks one facet beside the chain; the edit takes away its neighbour: the new boundary lies
+  // next to the input's own, so the refusal is the input's (non_manifold_input), naming that place.
+  Scene s;
+  TriMesh holed = s.m;
+  holed.F.row(s.facet) = holed.F.row(holed.F.rows() - 1);
+  holed.F.conservativeResize(holed.F.rows() - 1, 3);
+  const MeshTopology mesh(holed.V, holed.F);  // (the chain as traced on the whole mesh: the same vertices)
+  int neighbour = -1;
+  for (int f = 0; f < mesh.num_facets() && neighbour < 0; ++f)
+    for (int k = 0; k < 3; ++k)
+      if (mesh.edge_facet_count(mesh.F(f, k), mesh.F(f, (k + 1) % 3)) == 1 && std::abs(mesh.corner(f, 0).z() - 40) < 1e-9) neighbour = f;
+  ASSERT_GE(neighbour, 0);
+  MeshEdit edit{mesh};
+  edit.removed.insert(neighbour);
+  try {
+    check_result(edit, s.chain, 15, 0.05);
+    FAIL() << "a hole passed the check";
+  } catch (const RoundingError& e) {
+    EXPECT_EQ(e.code, ErrorCode::NonManifoldInput) << e.what();
+    EXPECT_NE(std::string(e.what()).find("a hole in it"), std::string::npos) << e.what();
+  }
+}
+
 }  // namespace
