@@ -222,10 +222,26 @@ TrimLines trim_base_meshes(const MeshTopology& mesh, const SharpChain& chain, co
     const ContactLineDistance line_distance{surface, chain, side};
     // The band's edge: the contact line, and past a capped end its end face's plane. A point on the plane
     // is measured from the line alone, so that an edge lying in the plane is cut where the line crosses it.
+    // On an end's plane, the band's corner runs from the chain's end to the round's corner on this side
+    // (ends.h EndSegment): a point of the plane on the far side of the chain's end -- where this side's
+    // face goes on around the end, as a pocket's top face around its rim -- is outside, however the
+    // contact line measures it.
+    auto behind_end = [&](const Vec3& p) {
+      double behind = -INFINITY;
+      for (int end = 0; end < 2; ++end) {
+        if (!cuts[end] || std::abs(cuts[end]->past(p)) > plane_slack) continue;
+        const Vec3 e = end ? chain.points.back() : chain.points.front();
+        const Vec3 toward = (end ? end_profiles.back() : end_profiles.front()).contact[side] - e;
+        if (toward.norm() > 0) behind = std::max(behind, -(p - e).dot(toward.normalized()));
+      }
+      return behind;
+    };
     auto distance = [&](const Vec3& p, double u_hint, double* u_out, Vec3* away = nullptr) {
       const double d = line_distance(p, u_hint, u_out, away);
       const double past = past_end(p);
-      return past > plane_slack ? std::max(d, past) : d;
+      if (past > plane_slack) return std::max(d, past);
+      const double behind = behind_end(p);
+      return behind > plane_slack ? std::max(d, behind) : d;
     };
     // The parameter of a point q on the contact line, searched from a few starts between u_a and u_b
     // (first at the share w): the one whose line point is nearest q. Near a capped end the line may
@@ -362,8 +378,10 @@ TrimLines trim_base_meshes(const MeshTopology& mesh, const SharpChain& chain, co
         const double fa = std::min(c->past(pa), 0.0), crossing = fa / (fa - c->past(pb));
         if (crossing < first_crossing) first_crossing = crossing, beyond = c;
       }
-      // A vertex in the band on that plane: the plane's trace runs through the vertex itself.
-      if (beyond && std::abs(beyond->past(pa)) <= plane_slack) {
+      // A vertex in the band on that plane: the plane's trace runs through the vertex itself. So too where
+      // the edge runs in the plane to its far side of the chain's end (behind_end).
+      const bool a_on_plane = beyond ? std::abs(beyond->past(pa)) <= plane_slack : std::abs(past_end(pa)) <= plane_slack;
+      if ((beyond || behind_end(pb) > plane_slack) && a_on_plane) {
         plane_points.insert(a);
         return a;
       }

@@ -1,0 +1,30 @@
+"""A chain whose round runs on to the face where it ends (issue 12, point 1), at radii up to what fits.
+
+One rim edge of a pocket (cases.pocket_edge) runs at both ends into the next wall, while the block's top
+face goes on around the pocket's corner. From r = 10 (reach 3 r = 30 mm) the top face's base mesh takes in
+the far side of the pocket too, and its vertices on an end's plane beyond the chain's end (the next rim
+edge, up to the pocket's far corner) measured as inside the band: holes and points that were not a number
+(refused, but the radius fits: max_radius gives 12 and, drafted 10 degrees, 14.52). Now every radius up to
+0.98 of the limit rounds, sound and within r / 100 of OCCT's fillet of that edge both ways.
+"""
+import pytest
+
+import cases
+import reference
+
+import MeshRound
+
+
+@pytest.mark.parametrize("draft, radius", [(0.0, 10.0), (0.0, 11.76), (10.0, 11.5), (10.0, 14.2)])
+def test_a_rim_edge_rounds_into_the_walls_at_its_ends_up_to_its_limit(draft, radius):
+    case = cases.Case(f"pocket_edge_{draft:g}_r{radius:g}", cases.pocket_edge(draft), radius)
+    mesh = cases.mesh_of(case.solid, MaxLength=2.0)
+    before = mesh.Topology
+    res = MeshRound.round_edges(mesh, case.seeds, radius)
+    assert mesh.Topology == before
+    row = reference.score(case, mesh, res.mesh, res.report)
+    assert row["dev_out_to_ref"] <= 0.01 and row["dev_ref_to_out"] <= 0.01, row
+    assert row["boundary_edges_out"] == row["boundary_edges_in"] == 0
+    assert (row["nonmanifold_edges"], row["misoriented_edges"], row["degenerate_facets"]) == (0, 0, 0)
+    assert row["orientation_kept"] and not row["self_intersections"]
+    assert row["far_vertices_lost"] == row["far_facets_lost"] == row["far_facets_added"] == 0
