@@ -442,6 +442,14 @@ TrimLines trim_base_meshes(const MeshTopology& mesh, const SharpChain& chain, co
         for (int g : pair)
           if (!cut_facets.count(g)) rebuild.insert(g);
       }
+    // q (in facet f's plane) inside f or on its sides, with its corners where the snaps put them.
+    auto inside_facet = [&](int f, const Vec3& q) {
+      const Vec3 c[3] = {edit.point(mesh.F(f, 0)), edit.point(mesh.F(f, 1)), edit.point(mesh.F(f, 2))};
+      const Vec3 n = (c[1] - c[0]).cross(c[2] - c[0]);
+      for (int k = 0; k < 3; ++k)
+        if ((c[(k + 1) % 3] - c[k]).cross(q - c[k]).dot(n) < 0) return false;
+      return true;
+    };
     for (int f : base.facets[side]) {
       poll_cancel();
       int in = 0, outside = 0;
@@ -501,7 +509,11 @@ TrimLines trim_base_meshes(const MeshTopology& mesh, const SharpChain& chain, co
           const int segs = int(want);
           for (int s = 1; s < segs; ++s) {
             const double u = surface.wrap(prev.u + du * s / segs);
-            const int id = edit.add_point(on_facet(u));
+            const Vec3 q = on_facet(u);
+            // Where the line leaves a kept corner snapped onto it nearly along the facet's side, a point of it
+            // can fall a hair outside the facet: it would fold the polygon back on that side. None there.
+            if (!inside_facet(f, q)) continue;
+            const int id = edit.add_point(q);
             out.line[side].push_back({id, u});
             polygon.push_back(id);
           }

@@ -72,7 +72,7 @@ def assert_like_occt(case, mesh):
     return res
 
 
-@pytest.mark.parametrize("draft, variant", [(0.0, "fine"), (10.0, "fine"), (0.0, "coarse"), (10.0, "coarse"), (0.0, "cad")])
+@pytest.mark.parametrize("draft, variant", [(0.0, "fine"), (10.0, "fine"), (0.0, "coarse"), (10.0, "coarse"), (0.0, "cad"), (10.0, "cad")])
 def test_a_whole_pocket_rounds_like_occt(draft, variant):
     """Rim, wall corners and floor: 12 edges in one call, against OCCT's fillet of the 12 edges, on meshes
     of elements 0.4 r and 2.5 r and the CAD mesh."""
