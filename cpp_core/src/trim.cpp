@@ -189,7 +189,10 @@ TrimLines trim_base_meshes(const MeshTopology& mesh, const SharpChain& chain, co
   double nearest[2] = {INFINITY, INFINITY}, farthest[2] = {0, 0};
   for (const ProfileStation& st : end_profiles)
     for (int k = 0; k < 2; ++k) {
-      const double d = (st.contact[k] - chain.point_at(st.s)).norm();
+      // (A capped end's contacts are moved onto its plane: the band's corner there, past the chain's end at
+      // a mitre, farther from the chain than the contact lines are.)
+      const Vec3 contact = st.cut.active ? st.cut.onto(st.contact[k]) : st.contact[k];
+      const double d = (contact - chain.point_at(st.s)).norm();
       nearest[k] = std::min(nearest[k], d), farthest[k] = std::max(farthest[k], d);
     }
   const std::unordered_set<int> chain_vertices(chain.vertices.begin(), chain.vertices.end());
