@@ -42,10 +42,8 @@ ROWS = {}
 _CAD_CORNER_THIN = {("pocket_edge", "cad"), ("pocket_edge_draft", "cad"), ("pocket_rim_square", "cad"),
                     ("box_corner", "cad"), ("box_top_corner", "cad"), ("pocket_rim_walls", "cad"),
                     ("l_bracket_135", "cad")}
-# The drafted pocket's rim rolling on around its wall corners' rounds, on the CAD mesh: the first stage's
-# top-face vertex 0.07 mm outside the rim round's trim line leaves a sliver that folds over (the output
-# check refuses the result: facets that cross each other).
-_REFUSED = {("pocket_rim_walls_draft", "cad")}
+_REFUSED = set()  # (none now: the drafted rim with its wall corners on the CAD mesh rounds since the trim
+                  # line stopped taking points a hair outside their facet)
 # The pyramid's CAD mesh (one facet per face): the faces beside the band are re-triangulated with facets
 # under 10 degrees.
 KNOWN_FAULTS = {
