@@ -373,3 +373,20 @@ def test_sweep_of_a_deck_with_includes_and_from_the_command_line(tmp_path):
     out = run_cli("sweep", src, str(tmp_path / "nm"), "--seed", "37,40,30", "--radius", "3", "--format", "stl")
     assert out.returncode == 0, out.stderr  # --format stl: the deck's shells swept as a triangle mesh
     assert [f for f in os.listdir(tmp_path / "nm") if f.endswith(".stl")]
+
+
+def test_round_edges_report_has_the_rule_check_when_a_thickness_is_given():
+    mesh, seeds = box_edge_mesh()
+    assert "rules" not in MeshRound.round_edges(mesh, seeds, 4.0).report  # no thickness: no entry
+    (rule,) = MeshRound.round_edges(mesh, seeds, 4.0, thickness=1.0).report["rules"]
+    assert rule["flags"] == ["below_k_t"] and rule["min_radius"] == 5.0 and rule["tool"] == "die"
+    assert "below 5 t = 5 mm" in rule["message"]
+    assert MeshRound.round_edges(mesh, seeds, 4.0, thickness=1.0, tool="punch").report["rules"][0]["flags"] == []
+    assert MeshRound.round_edges(mesh, seeds, 4.0, thickness=1.0, tool="punch", k={"punch": 6}).report["rules"][0][
+        "min_radius"] == 6.0
+    law = [(V(0, 60, 40), 6.0), (V(100, 60, 40), 3.0)]  # a variable radius: its smallest is checked
+    assert MeshRound.round_edges(mesh, seeds, law, thickness=0.7).report["rules"][0]["flags"] == ["below_k_t"]
+    with pytest.raises(MeshRound.RoundingError, match="unknown tool type"):
+        MeshRound.round_edges(mesh, seeds, 4.0, thickness=1.0, tool="blank")
+    with pytest.raises(MeshRound.RoundingError, match="thickness must be a positive number"):
+        MeshRound.round_edges(mesh, seeds, 4.0, thickness=-1.0)
