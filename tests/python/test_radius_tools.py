@@ -306,6 +306,15 @@ def test_sweep_sheet_drives_one_rounding_from_a_spreadsheet_column(tmp_path):
         assert dict(rounding.ExpressionEngine) == {"Radius": "Spreadsheet.r"} or \
             dict((p.lstrip("."), e) for p, e in rounding.ExpressionEngine) == {"Radius": "Spreadsheet.r"}
         assert rounding.Radius.Value == 5.0 and rounding.Mesh.Topology == before and "Invalid" not in rounding.State
+        # without the limit check the engine is asked and refuses 45 mm: a "failed" row with its reason, the
+        # Rounding as it was afterwards
+        sheet.set("E1", "45")
+        sheet.set("E2", "3")
+        doc.recompute()
+        failed = MeshRound.sweep_sheet(rounding, sheet, "E", str(tmp_path / "f"), check_limits=False)
+        assert [row["status"] for row in failed.rows] == ["failed", "ok"] and failed.limits == []
+        assert "too large" in failed.rows[0]["message"] and failed.rows[0]["file"] is None
+        assert rounding.Radius.Value == 5.0 and "Invalid" not in rounding.State
         with pytest.raises(MeshRound.RoundingError, match="no radii in column D"):
             MeshRound.sweep_sheet(rounding, sheet, "D", str(tmp_path / "d"))
         sheet.set("B6", "wide")
