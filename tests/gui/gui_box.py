@@ -9,7 +9,7 @@ import FreeCADGui
 from PySide import QtGui
 
 from gui_support import (click, press_task_button, redraw_seconds, report_view_text, screenshot,
-                         show_model, start_macro_recording, step, stop_macro_recording)
+                         show_model, start_macro_recording, step, stop_macro_recording, type_into)
 
 BACK_EDGE_SEED = FreeCAD.Vector(37, 60, 40)  # on the top back edge (y = 60, z = 40)
 
@@ -76,7 +76,19 @@ def run(work_dir):
     step("error_style", panel.form.status.styleSheet())
     panel.set_radius(4.0)
     step("radius_text", panel.form.radius.text())  # a field with units
-    panel.form.tolerance.setProperty("rawValue", 0.05)  # the tolerance field
+    step("tolerance_automatic", panel.form.tolerance.text())  # at 0 it says what automatic is, for r = 4
+    # the rule check beside the limit: a sheet thickness typed in, the tool type switched
+    rules = {"none": panel.form.rule_check.text()}
+    type_into(panel.form.thickness, "0.9")
+    rules["die"] = {"thickness": panel.form.thickness.property("rawValue"), "text": panel.form.rule_check.text(),
+                    "style": panel.form.rule_check.styleSheet()}
+    panel.form.tool.setCurrentText("punch")
+    rules["punch"] = {"text": panel.form.rule_check.text(), "style": panel.form.rule_check.styleSheet()}
+    type_into(panel.form.thickness, "0")
+    panel.form.tool.setCurrentText("die")
+    rules["cleared"] = panel.form.rule_check.text()
+    step("rules", rules)
+    panel.form.tolerance.setValue(0.05)  # the tolerance field
     result = panel.preview_now()
     step("preview_report", result.report if result else None)
     step("status_text", panel.form.status.text())
@@ -192,7 +204,9 @@ def ok_failure_then_cancel(doc, box, active_panel):
     panel.preview_now()  # refused before the engine runs: the limit (max_radius) and why, beside the field
     step("past_limit", {"limit": panel.form.radius_limit.text(), "style": panel.form.radius_limit.styleSheet(),
                         "status": panel.form.status.text(), "no_preview": panel.result is None,
-                        "tolerance_label": panel.form.tolerance.parent().layout().labelForField(panel.form.tolerance).text()})
+                        "tolerance_label": panel.form.tolerance.parent().layout().labelForField(panel.form.tolerance).text(),
+                        "tolerance_text": panel.form.tolerance.text(), "rules": panel.form.rule_check.text(),
+                        "rules_style": panel.form.rule_check.styleSheet()})
     press_task_button("ok")
     step("ok_failure", {
         "panel_open": active_panel() is panel and bool(FreeCADGui.Control.activeDialog()),

@@ -157,3 +157,16 @@ def press_task_button(which):
             FreeCADGui.updateGui()
             return True
     return False
+
+
+def type_into(box, text):
+    """Type into a field as a user does: select what is there, type the keys (key events sent to the field's
+    line edit, as the keyboard gives them).  No Enter: in a task panel it presses OK."""
+    box.setFocus()
+    line = box.findChild(QtGui.QLineEdit)
+    line.selectAll()
+    keys = [(QtCore.Qt.Key(ord(ch.upper())), ch) for ch in text]
+    for key, char in keys:
+        for kind in (QtCore.QEvent.KeyPress, QtCore.QEvent.KeyRelease):
+            QtGui.QApplication.sendEvent(line, QtGui.QKeyEvent(kind, key, QtCore.Qt.NoModifier, char))
+    FreeCADGui.updateGui()

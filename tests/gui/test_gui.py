@@ -83,6 +83,20 @@ def test_mouse_click_adds_a_seed_and_its_chain(observed):
     assert observed["chain_lengths_after_click"] == pytest.approx([100.0, 100.0])
 
 
+def test_the_rule_line_flags_a_radius_below_k_t_for_the_typed_thickness(observed):
+    rules = observed["rules"]
+    assert rules["none"] == ""  # no thickness, the radius within the limit: nothing to say
+    assert rules["die"]["thickness"] == pytest.approx(0.9)  # typed: "0.9"
+    assert rules["die"]["text"] == "below k·t: r = 4 mm is below 5 t = 4.5 mm (die radius rule)"
+    assert "c00000" in rules["die"]["style"]
+    assert rules["punch"]["text"] == "r >= 3.6 mm (punch, 4 t): met" and "c00000" not in rules["punch"]["style"]
+    assert rules["cleared"] == ""
+
+
+def test_the_tolerance_field_says_what_automatic_is(observed):
+    assert observed["tolerance_automatic"] == "automatic (r / 100 = 0.04 mm)"
+
+
 def test_feature_angle_and_tolerance_fields(observed):
     above = observed["feature_angle_100"]  # the box's edges are 90 deg: none is sharp at 100
     assert above["chains"] == 0 and "no sharp edge" in above["status"]
@@ -112,6 +126,9 @@ def test_ok_that_fails_keeps_the_panel_open_and_the_document_unchanged(observed)
     assert "too large: the largest that fits is 40 mm" in past["limit"] and "c00000" in past["style"]
     assert past["status"] == past["limit"] and past["no_preview"]
     assert "automatic, radius / 100" in past["tolerance_label"]
+    assert past["tolerance_text"] == "automatic (r / 100 = 0.7 mm)"  # the field at 0 says what it means
+    assert past["rules"].startswith("above the feasible limit: r = 70 mm is above the largest that fits, 39.99")
+    assert "c00000" in past["rules_style"]
     failure = observed["ok_failure"]
     assert failure["panel_open"]
     assert "too large" in failure["status"]  # the engine's reason, in the panel

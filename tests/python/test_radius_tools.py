@@ -260,3 +260,142 @@ def test_sweep_features_make_one_parametric_rounding_per_radius():
             assert f.Mesh.Volume == pytest.approx(100 * 60 * 40 - (1 - math.pi / 4) * r * r * 100, rel=2e-3)
     finally:
         FreeCAD.closeDocument(doc.Name)
+
+
+def test_sweep_sheet_drives_one_rounding_from_a_spreadsheet_column(tmp_path):
+    """Column B of a sheet (a header, 4, 6 mm, 41 past the 40 mm limit, 8.5): one variant file per cell from the
+    one Rounding, the same table as sweep's, the limit's line for 41; the Rounding's own radius expression
+    (Spreadsheet.r) is back afterwards."""
+    import FreeCAD
+    import Spreadsheet  # noqa: F401  (registers Spreadsheet::Sheet)
+    mesh, seeds = box_edge_mesh()
+    doc = FreeCAD.newDocument("SweepSheet")
+    try:
+        base = doc.addObject("Mesh::Feature", "Box")
+        base.Mesh = mesh
+        sheet = doc.addObject("Spreadsheet::Sheet", "Spreadsheet")
+        for cell, text in (("A1", "5"), ("B1", "radius"), ("B2", "4"), ("B3", "6 mm"), ("B4", "41"),
+                           ("B5", "8.5"), ("C2", "99")):
+            sheet.set(cell, text)
+        sheet.setAlias("A1", "r")
+        rounding = MeshRound.make_rounding(base, seeds, 5.0)
+        rounding.setExpression("Radius", "Spreadsheet.r")
+        doc.recompute()
+        before = rounding.Mesh.Topology
+        result = MeshRound.sweep_sheet(rounding, sheet, "B", str(tmp_path), fmt="obj", thickness=1.0)
+        assert [row["cell"] for row in result.rows] == ["B2", "B3", "B4", "B5"]
+        assert [row["radii"] for row in result.rows] == [[4.0], [6.0], [41.0], [8.5]]
+        assert [row["status"] for row in result.rows] == ["ok", "ok", "above_limit", "ok"]
+        assert "41" in result.stopped and "39.99" in result.stopped and "above the feasible limit" in result.stopped
+        assert "largest feasible radius 39.99" in result.rows[2]["message"]
+        for row in (result.rows[0], result.rows[1], result.rows[3]):
+            r = row["radii"][0]
+            assert row["file"] == f"Rounding_{row['index']:03d}_r{r:g}.obj"
+            written = Mesh.Mesh(str(tmp_path / row["file"]))
+            assert row["facets_added"] == MeshRound.round_edges(mesh, seeds, r).report["facets_added"]
+            assert written.Volume == pytest.approx(100 * 60 * 40 - (1 - math.pi / 4) * r * r * 100, rel=2e-3)
+        assert result.rows[0]["rules"][0]["flags"] == ["below_k_t"] and result.rows[1]["rules"][0]["flags"] == []
+        with open(result.table_csv, newline="") as stream:
+            table = list(csv.DictReader(stream))
+        assert [t["status"] for t in table] == ["ok", "ok", "above_limit", "ok"]
+        assert table[0]["rule_flags"] == "below_k_t" and table[3]["file"] == "Rounding_003_r8.5.obj"
+        data = json.load(open(result.table_json))
+        assert data["rows"][1]["cell"] == "B3" and data["rows"][1]["report"]["facets_added"] > 0
+        assert "above the feasible limit" in data["stopped"]
+        # the Rounding as it was: its expression, its radius, its mesh
+        assert dict(rounding.ExpressionEngine) == {"Radius": "Spreadsheet.r"} or \
+            dict((p.lstrip("."), e) for p, e in rounding.ExpressionEngine) == {"Radius": "Spreadsheet.r"}
+        assert rounding.Radius.Value == 5.0 and rounding.Mesh.Topology == before and "Invalid" not in rounding.State
+        # without the limit check the engine is asked and refuses 45 mm: a "failed" row with its reason, the
+        # Rounding as it was afterwards
+        sheet.set("E1", "45")
+        sheet.set("E2", "3")
+        doc.recompute()
+        failed = MeshRound.sweep_sheet(rounding, sheet, "E", str(tmp_path / "f"), check_limits=False)
+        assert [row["status"] for row in failed.rows] == ["failed", "ok"] and failed.limits == []
+        assert "too large" in failed.rows[0]["message"] and failed.rows[0]["file"] is None
+        assert rounding.Radius.Value == 5.0 and "Invalid" not in rounding.State
+        with pytest.raises(MeshRound.RoundingError, match="no radii in column D"):
+            MeshRound.sweep_sheet(rounding, sheet, "D", str(tmp_path / "d"))
+        sheet.set("B6", "wide")
+        doc.recompute()
+        with pytest.raises(MeshRound.RoundingError, match="B6 is not a radius"):
+            MeshRound.sweep_sheet(rounding, sheet, "B", str(tmp_path / "e"))
+    finally:
+        FreeCAD.closeDocument(doc.Name)
+
+
+def deck_box(folder, style):
+    """tests/python/deck_files.py's box deck (60 x 40 x 30, quads 2.5): its top back edge at y = 40, z = 30."""
+    import deck_files
+    import numpy as np
+    xyz, quads, faces = deck_files.box_quads((60.0, 40.0, 30.0), 2.5)
+    centroid = xyz[quads].mean(axis=1)
+    near = np.flatnonzero((np.abs(centroid[:, 1] - 40) < 5) & (np.abs(centroid[:, 2] - 30) < 5))
+    edge = np.flatnonzero((np.abs(xyz[:, 1] - 40) < 1e-9) & (np.abs(xyz[:, 2] - 30) < 1e-9))
+    return deck_files.write_deck(folder, style, xyz, quads, faces, near, np.flatnonzero(faces == 4), edge)
+
+
+DECK_SEED = (37.0, 40.0, 30.0)
+
+
+def test_sweep_of_a_deck_writes_decks_the_same_as_round_deck(tmp_path):
+    """Each variant of an LS-DYNA deck is the deck round_deck writes for that radius, byte for byte (IDs and
+    every line outside the band kept); 45 mm is past the 30 mm side face: not made, said so."""
+    path = deck_box(str(tmp_path), "lsdyna_fixed")
+    result = MeshRound.sweep(path, [DECK_SEED], [3.0, 5.0, 45.0], out_dir=str(tmp_path / "variants"), jobs=2)
+    assert [row["status"] for row in result.rows] == ["ok", "ok", "above_limit"]
+    assert "45" in result.stopped and result.limits[0].radius == pytest.approx(30.0, rel=5e-3)
+    before = MeshRound.read_deck(path)
+    for row, r in zip(result.rows[:2], (3.0, 5.0)):
+        assert row["file"].endswith(f"_r{r:g}.k")
+        single = str(tmp_path / f"single_r{r:g}.k")
+        MeshRound.round_deck(path, single, [DECK_SEED], r)
+        variant = tmp_path / "variants" / row["file"]
+        assert variant.read_bytes() == open(single, "rb").read()
+        after = MeshRound.read_deck(str(variant))
+        assert len(after["shell_ids"]) > len(before["shell_ids"]) and after["format"] == "lsdyna"
+        assert row["report"]["deck"]["elements_removed"] > 0 and row["facets_added"] > 0
+    with pytest.raises(MeshRound.RoundingError, match="no conversion"):
+        MeshRound.sweep(path, [DECK_SEED], [3.0], out_dir=str(tmp_path / "x"), fmt="stl")
+
+
+def test_sweep_of_a_deck_with_includes_and_from_the_command_line(tmp_path):
+    """A deck whose nodes are in an include: each variant in a folder of its own with its include; the
+    command line sweeps a Nastran deck into Nastran decks."""
+    path = deck_box(str(tmp_path), "lsdyna_long")  # box.k includes box_nodes.k
+    result = MeshRound.sweep(path, [DECK_SEED], [4.0, 6.0], out_dir=str(tmp_path / "v"), jobs=1)
+    assert [row["status"] for row in result.rows] == ["ok", "ok"]
+    for row in result.rows:
+        folder = tmp_path / "v" / os.path.dirname(row["file"])
+        assert os.path.basename(row["file"]) == "box.k" and (folder / "box_nodes.k").is_file()
+        assert len(MeshRound.read_deck(str(folder / "box.k"))["node_ids"]) > len(MeshRound.read_deck(path)["node_ids"])
+    nastran = tmp_path / "n"
+    nastran.mkdir()
+    src = deck_box(str(nastran), "nastran_small")
+    out = run_cli("sweep", src, str(tmp_path / "nv"), "--seed", "37,40,30", "--radius", "3,5,45", "--jobs", "1")
+    assert out.returncode == 0, out.stderr
+    assert "sweep stopped at the feasible limit" in out.stdout and "2 of 3 variant(s) made" in out.stdout
+    made = sorted(f for f in os.listdir(tmp_path / "nv") if f.endswith(".bdf"))
+    assert len(made) == 2
+    assert MeshRound.read_deck(str(tmp_path / "nv" / made[0]))["format"] == "nastran"
+    out = run_cli("sweep", src, str(tmp_path / "nm"), "--seed", "37,40,30", "--radius", "3", "--format", "stl")
+    assert out.returncode == 0, out.stderr  # --format stl: the deck's shells swept as a triangle mesh
+    assert [f for f in os.listdir(tmp_path / "nm") if f.endswith(".stl")]
+
+
+def test_round_edges_report_has_the_rule_check_when_a_thickness_is_given():
+    mesh, seeds = box_edge_mesh()
+    assert "rules" not in MeshRound.round_edges(mesh, seeds, 4.0).report  # no thickness: no entry
+    (rule,) = MeshRound.round_edges(mesh, seeds, 4.0, thickness=1.0).report["rules"]
+    assert rule["flags"] == ["below_k_t"] and rule["min_radius"] == 5.0 and rule["tool"] == "die"
+    assert "below 5 t = 5 mm" in rule["message"]
+    assert MeshRound.round_edges(mesh, seeds, 4.0, thickness=1.0, tool="punch").report["rules"][0]["flags"] == []
+    assert MeshRound.round_edges(mesh, seeds, 4.0, thickness=1.0, tool="punch", k={"punch": 6}).report["rules"][0][
+        "min_radius"] == 6.0
+    law = [(V(0, 60, 40), 6.0), (V(100, 60, 40), 3.0)]  # a variable radius: its smallest is checked
+    assert MeshRound.round_edges(mesh, seeds, law, thickness=0.7).report["rules"][0]["flags"] == ["below_k_t"]
+    with pytest.raises(MeshRound.RoundingError, match="unknown tool type"):
+        MeshRound.round_edges(mesh, seeds, 4.0, thickness=1.0, tool="blank")
+    with pytest.raises(MeshRound.RoundingError, match="thickness must be a positive number"):
+        MeshRound.round_edges(mesh, seeds, 4.0, thickness=-1.0)

@@ -11,6 +11,8 @@
     res = MeshRound.round_deck("die.k", "die_r5.k", seeds, 5)     # round a deck, write it back (decks.py)
     MeshRound.max_radius(mesh, seeds)                             # largest radius per chain, what stops it
     MeshRound.sweep(mesh, seeds, radii, out_dir)                  # one rounded variant per radius + table
+    MeshRound.sweep("die.k", seeds, radii, out_dir)               # ... of a solver deck, each variant a deck
+    MeshRound.sweep_sheet(rounding, sheet, "B", out_dir)          # a Rounding over a spreadsheet column
     token = MeshRound.CancelToken()                               # round_edges(..., cancel=token); from
     token.cancel()                                                # another thread: stops the run
 
@@ -41,6 +43,7 @@ _EXPORTS = {
     "sweep": "sweep",
     "optimise_radius": "sweep",
     "sweep_features": "sweep",
+    "sweep_sheet": "sweep",
     "change_radius": "reround",
 }
 __all__ = list(_EXPORTS)
@@ -49,9 +52,13 @@ __all__ = list(_EXPORTS)
 def __getattr__(name):
     if name not in _EXPORTS:
         raise AttributeError(f"module 'MeshRound' has no attribute {name!r}")
-    value = getattr(importlib.import_module(f".{_EXPORTS[name]}", __name__), name)
-    globals()[name] = value  # later look-ups skip this function
-    return value
+    module = importlib.import_module(f".{_EXPORTS[name]}", __name__)
+    # Every name of that module at once (later look-ups skip this function): importing submodule `sweep`
+    # sets the package's attribute `sweep` to the module, which must not hide the function sweep.
+    for other, where in _EXPORTS.items():
+        if where == _EXPORTS[name]:
+            globals()[other] = getattr(module, other)
+    return globals()[name]
 
 
 def __dir__():

@@ -18,7 +18,7 @@ import time
 import FreeCAD
 import numpy as np
 
-from . import inputs, meshconv, meshedit, progress, shapes
+from . import inputs, meshconv, meshedit, progress, radius_limits, shapes
 from .errors import CancelToken, RoundingError, check_cancelled, require_core
 
 __all__ = ["RoundingError", "CancelToken", "RoundingResult", "round_edges", "round_arrays", "trace_chains",
@@ -64,7 +64,7 @@ class RoundingResult:
 
 
 def round_edges(mesh, seeds, radius, tolerance=None, feature_angle=30.0, reach=3.0, max_new_facets=None,
-                cancel=None):
+                cancel=None, thickness=None, tool="die", k=None):
     """Round the sharp-edge chains of `mesh` that pass nearest to `seeds`.
 
     mesh: Mesh.Mesh (not modified).  seeds: a Vector, an (x, y, z) triple, or a list of them; each picks
@@ -74,13 +74,17 @@ def round_edges(mesh, seeds, radius, tolerance=None, feature_angle=30.0, reach=3
     of a chain are re-meshed.  max_new_facets: the work budget (None: the engine's default, 2,000,000);
     a rounding that would make more new facets is refused (code work_limit).  cancel: a
     MeshRound.CancelToken, or None; token.cancel() from another thread stops the run within about 0.1 s with RoundingError(code "cancelled"), the input untouched
-    (a token cancelled before the call is refused at once).  Returns a RoundingResult; raises
+    (a token cancelled before the call is refused at once).  thickness: the sheet thickness t in mm, for
+    the stamping rule radius >= k.t (radius_limits.check_rules, tool "die" or "punch", k overriding its
+    factors); given, the report gets "rules": one check_rules row per chain (flags "below_k_t"; a variable
+    radius is checked by its smallest); None: no such entry.  Returns a RoundingResult; raises
     RoundingError.
     """
     started = time.perf_counter()
     check_cancelled(cancel)
     inputs.check_mesh(mesh)
     arguments = _engine_arguments(seeds, radius, tolerance, feature_angle, reach, max_new_facets, cancel)
+    rule_radius = _rule_radius(radius, thickness, tool, k)  # bad rule arguments are refused before the work
     vertices, triangles = meshconv.mesh_to_arrays(mesh)
     read = time.perf_counter()
     # The output is the input's copy with the band edited (meshedit.py); the copy is made on the other
@@ -100,7 +104,21 @@ def round_edges(mesh, seeds, radius, tolerance=None, feature_angle=30.0, reach=3
     done = time.perf_counter()
     result.report["seconds"] = done - started
     result.report["seconds_stages"] = dict(mesh_to_arrays=read - started, engine=engine - read, output_mesh=done - engine)
+    if thickness is not None:
+        result.report["rules"] = radius_limits.check_rules(None, [rule_radius] * int(result.report.get("chains") or 1),
+                                                           thickness, tool, k)
     return result
+
+
+def _rule_radius(radius, thickness, tool, k):
+    """The radius the k.t rule checks (a law's smallest), after checking the rule's arguments; None
+    without a thickness."""
+    if thickness is None:
+        return None
+    largest, law = inputs.radius_and_law(radius)
+    smallest = float(law[:, 3].min()) if law is not None else largest
+    radius_limits.check_rules(None, smallest, thickness, tool, k)
+    return smallest
 
 
 def round_arrays(vertices, triangles, seeds, radius, tolerance=None, feature_angle=30.0, reach=3.0,

@@ -7,7 +7,7 @@
     meshround reround IN OUT --seed X,Y,Z [--seed ...] --radius R [--tolerance T] [--report FILE]
     meshround demo [--out DIR]
     meshround max-radius IN --seed X,Y,Z [...]          (cli_radius.py)
-    meshround sweep IN OUTDIR --seed X,Y,Z [...] --radius 3:10:0.5
+    meshround sweep IN OUTDIR --seed X,Y,Z [...] --radius 3:10:0.5   (IN a mesh, or a solver deck swept as one)
 
 Run as `/usr/bin/python3 -m MeshRound.cli ...` with Mod/MeshRound on sys.path (the `meshround` wrapper
 next to this package does that).  Exit status: 0 done, 1 the work failed (unreadable input, no sharp
@@ -218,11 +218,30 @@ def run_radius_tool(args):
     """max-radius and sweep (cli_radius.py)."""
     from . import cli_radius
     Mesh, MeshRound = _import_freecad()
-    mesh = _read_mesh(Mesh, args.input)
+    if args.command == "sweep" and cli_radius.sweeps_deck(args, deck_family):
+        if not os.path.isfile(args.input):
+            raise Failure(f"cannot read '{args.input}': no such file")
+        return cli_radius.run_sweep(args, MeshRound, args.input, Failure)
+    if args.command == "sweep" and deck_family(args.input):  # a deck's shells, swept as a triangle mesh
+        mesh = _deck_mesh(MeshRound, args.input, args.part)
+    elif getattr(args, "part", None) is not None:
+        raise Failure("--part needs a solver deck as IN")
+    else:
+        mesh = _read_mesh(Mesh, args.input)
     if args.command == "max-radius":
         cli_radius.run_max_radius(args, MeshRound, mesh, Failure, _dump_json)
     else:
         cli_radius.run_sweep(args, MeshRound, mesh, Failure)
+def _deck_mesh(MeshRound, path, part):
+    """The shells of a solver deck (of one part) as a Mesh.Mesh of triangles (a quad split in two)."""
+    from MeshRound import decks, meshconv
+    try:
+        vertices, triangles, _, _ = decks.deck_triangles(MeshRound.read_deck(path), part)
+    except MeshRound.RoundingError as exc:
+        raise Failure(f"cannot read '{path}': {exc}") from exc
+    return meshconv.arrays_to_mesh(vertices, triangles)
+
+
 def run_reround(args):
     Mesh, MeshRound = _import_freecad()
     mesh = _read_mesh(Mesh, args.input)

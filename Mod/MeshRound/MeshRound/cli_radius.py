@@ -4,7 +4,11 @@
                          [--radius R --thickness T [--tool die|punch] [--k F]] [--json FILE]
     meshround sweep IN OUTDIR --seed X,Y,Z [--seed ...] (--radius SPEC | --radius-csv FILE)
                     [--format stl] [--jobs N] [--tolerance T] [--feature-angle A] [--reach K]
-                    [--thickness T [--tool die|punch] [--k F]]
+                    [--thickness T [--tool die|punch] [--k F]] [--part PID]
+
+A solver deck as IN (.k .key .dyn / .bdf .nas .dat / .inp) is swept as a deck: each variant is the deck
+rounded and written back in its own format (MeshRound.round_deck); with --format stl (or another mesh
+format) the deck's shells are swept as a triangle mesh (a quad split in two) and written in that format.
 
 SPEC is START:STOP:STEP (STOP included when the steps reach it) or a comma-separated list.  The CSV has
 one row per variant and one radius per chain (in seed order); a first row that is not numbers is a header.
@@ -74,13 +78,16 @@ def add_parsers(commands, point, finite):
                              description="Round the picked chains once per radius, in parallel processes; write "
                                          "each variant into OUTDIR and table.csv / table.json with each one's report. "
                                          "Radii above the feasible limit are skipped with a line saying so.")
-    sw.add_argument("input", metavar="IN", help="mesh file to read")
+    sw.add_argument("input", metavar="IN", help="mesh file or solver deck to read")
     sw.add_argument("out_dir", metavar="OUTDIR", help="folder for the variants and the tables")
     common(sw)
     radii = sw.add_mutually_exclusive_group(required=True)
     radii.add_argument("--radius", metavar="SPEC", type=radius_spec, help="START:STOP:STEP or R1,R2,... (mm)")
     radii.add_argument("--radius-csv", metavar="FILE", help="CSV: one row per variant, one radius per chain")
-    sw.add_argument("--format", default="stl", help="output mesh format (extension; default stl)")
+    sw.add_argument("--format", default=None,
+                    help="output mesh format (extension; default stl, for a solver deck its own format)")
+    sw.add_argument("--part", metavar="PID", type=int, default=None,
+                    help="solver decks: round only this part's shells (as meshround round --part)")
     sw.add_argument("--jobs", metavar="N", type=int, default=None, help="processes (default: one per core)")
     sw.add_argument("--tolerance", metavar="T", type=finite, default=None, help="chordal tolerance (default r/100)")
 
@@ -108,7 +115,15 @@ def run_max_radius(args, MeshRound, mesh, failure, dump_json):
         dump_json(dict(chains=[lim.as_dict() for lim in limits], rules=rules), args.json)
 
 
+def sweeps_deck(args, deck_family):
+    """True when sweep's IN is a solver deck written back as one (no --format, or its own family's)."""
+    family = deck_family(args.input)
+    fmt = (args.format or "").lower().lstrip(".")
+    return bool(family) and (not fmt or deck_family("x." + fmt) == family)
+
+
 def run_sweep(args, MeshRound, mesh, failure):
+    """mesh: a Mesh.Mesh, or the solver deck's path (sweeps_deck)."""
     radii = args.radius
     if args.radius_csv:
         try:
@@ -116,7 +131,8 @@ def run_sweep(args, MeshRound, mesh, failure):
         except (OSError, ValueError) as exc:
             raise failure(f"cannot read radii from '{args.radius_csv}': {exc}") from exc
     try:
-        result = MeshRound.sweep(mesh, args.seed, radii, out_dir=args.out_dir, fmt=args.format.lower().lstrip("."),
+        fmt = args.format.lower().lstrip(".") if args.format and not isinstance(mesh, str) else None
+        result = MeshRound.sweep(mesh, args.seed, radii, out_dir=args.out_dir, fmt=fmt, part=args.part,
                                  jobs=args.jobs, tolerance=args.tolerance, feature_angle=args.feature_angle,
                                  reach=args.reach, **_rule_options(args))
     except MeshRound.RoundingError as exc:

@@ -60,6 +60,16 @@ def radius_and_law(radius):
     return float(law[:, 3].max()), law
 
 
+# The engine's rule for tolerance 0 ("automatic"): the largest radius times this (cpp_core; the panel's
+# preview and its tolerance field say it with this number).
+AUTO_TOLERANCE_FRACTION = 1.0 / 100.0
+
+
+def automatic_tolerance(largest_radius):
+    """The chordal tolerance the engine uses when none is given (0): largest radius / 100."""
+    return float(largest_radius) * AUTO_TOLERANCE_FRACTION
+
+
 def tolerance_value(tolerance):
     """The core's tolerance: 0 means 'largest radius / 100'."""
     if tolerance is None:

@@ -39,6 +39,8 @@ WHY_TEXT = {
 # thumb give (die entry radius about 5-10 t, punch nose radius about 4-10 t); not taken from a standard
 # and not checked against one cited document here: set k from your own or your material supplier's rules.
 DEFAULT_K = {"die": 5.0, "punch": 4.0}
+# check_rules' flags, in words (the task panel's rule line).
+FLAG_TEXT = {"below_k_t": "below k·t", "above_limit": "above the feasible limit"}
 
 
 @dataclasses.dataclass

@@ -1,12 +1,15 @@
 """Radius sweeps and the optimiser hook (issue 16): many rounded variants of one mesh, one per radius.
 
     s = MeshRound.sweep(mesh, seeds, [3, 4, 5, 6], out_dir="variants")   # files + table.csv + table.json
+    s = MeshRound.sweep("die.k", seeds, [3, 4, 5])                       # a solver deck: variants are decks
     s.rows                 # one dict per variant: radii, file, status, facets_added, max_deviation, ...
+    s = MeshRound.sweep_sheet(rounding, sheet, "B", "variants")         # in FreeCAD: radii from a column
     best = MeshRound.optimise_radius(mesh, seeds, objective)             # objective(path) -> float
 
 Variants are made in parallel processes (forked: the mesh's arrays are shared, not pickled; jobs=None
 means one per core); a radius above a chain's largest feasible radius (max_radius) is not tried: the
 table says so in one line per such variant (status "above_limit") and the sweep goes on with the rest.
+Every sweep (of a mesh, of a deck, of a Rounding feature from a spreadsheet) writes the same table.
 """
 import concurrent.futures
 import csv
@@ -22,7 +25,8 @@ import numpy as np
 
 import FreeCAD
 
-from . import api, inputs, meshconv, radius_limits
+from . import api, decks, inputs, meshconv, radius_limits
+from .deck_formats import deck_family
 from .errors import RoundingError
 
 # What FreeCAD's Mesh module writes, by extension (as the command line).
@@ -54,11 +58,17 @@ def _variant(task):
     w = _WORK
     row = dict(index=index, radii=list(radii), file=None, status="ok", message="")
     radius = radii[0] if len(set(radii)) == 1 else [(p, r) for p, r in zip(w["control_points"], radii)]
+    name = f"{w['stem']}_{index:03d}_r{'_'.join(f'{r:g}' for r in radii)}.{w['fmt']}"
     try:
-        res = api.round_arrays(w["vertices"], w["triangles"], w["seeds"], radius, **w["options"])
-        name = f"{w['stem']}_{index:03d}_r{'_'.join(f'{r:g}' for r in radii)}.{w['fmt']}"
-        path = os.path.join(w["out_dir"], name)
-        meshconv.arrays_to_mesh(res.vertices, res.triangles).write(path)
+        if w["deck"]:
+            if w["deck_includes"]:  # the variant's includes beside it: a folder of its own
+                name = os.path.join(os.path.splitext(name)[0], os.path.basename(w["deck"]))
+                os.makedirs(os.path.join(w["out_dir"], os.path.dirname(name)), exist_ok=True)
+            res = decks.round_deck(w["deck"], os.path.join(w["out_dir"], name), w["seeds"], radius, part=w["part"],
+                                   **w["options"])
+        else:
+            res = api.round_arrays(w["vertices"], w["triangles"], w["seeds"], radius, **w["options"])
+            meshconv.arrays_to_mesh(res.vertices, res.triangles).write(os.path.join(w["out_dir"], name))
         row.update(file=name, report=res.report)
         row.update({k: res.report.get(k) for k in TABLE_COLUMNS})
     except RoundingError as exc:
@@ -84,22 +94,33 @@ def radius_rows(radii, chains):
     return rows
 
 
-def sweep(mesh, seeds, radii, out_dir=None, fmt="stl", jobs=None, tolerance=None, feature_angle=30.0, reach=3.0,
-          thickness=None, tool="die", k=None, check_limits=True, stem="variant"):
+def sweep(mesh, seeds, radii, out_dir=None, fmt=None, jobs=None, tolerance=None, feature_angle=30.0, reach=3.0,
+          thickness=None, tool="die", k=None, check_limits=True, stem="variant", part=None):
     """One rounded variant of `mesh` per entry of `radii`, written to out_dir (None: a new temporary folder),
     with table.csv and table.json (each variant's report, file name and rule flags).
 
+    mesh: a Mesh.Mesh, or the path of a solver deck (LS-DYNA .k/.key/.dyn, Nastran .bdf/.nas/.dat, Abaqus
+    .inp): each variant is then that deck rounded by round_deck (IDs, parts, sets and every other line kept
+    outside the band) and written in its own format (a deck with includes: each variant in a folder of its
+    own, its includes beside it); part: round_deck's part, for a deck only.
     radii: numbers (every picked chain gets that radius), or lists of one radius per distinct chain in seed
-    order (each seed then carries its chain's radius).  fmt: a Mesh write format (WRITE_FORMATS).  jobs:
-    processes (None: one per core; 1: in this process).  thickness, tool, k: check_rules' stamping rule
-    (radius >= k.t), flagged in the table.  check_limits: measure max_radius first and skip the variants
-    above it (status "above_limit").  Returns a SweepResult."""
+    order (each seed then carries its chain's radius).  fmt: a Mesh write format (WRITE_FORMATS; None: stl),
+    for a deck None or its own extension.  jobs: processes (None: one per core; 1: in this process).
+    thickness, tool, k: check_rules' stamping rule (radius >= k.t), flagged in the table.  check_limits:
+    measure max_radius first and skip the variants above it (status "above_limit").  Returns a SweepResult."""
     started = time.perf_counter()
-    inputs.check_mesh(mesh)
-    if fmt not in WRITE_FORMATS:
-        raise RoundingError(f"unknown mesh format {fmt!r}: one of {', '.join(WRITE_FORMATS)}")
+    deck = _deck_path(mesh, fmt, part)
+    if deck:
+        arrays = decks.read_deck(deck)
+        vertices, triangles, _, _ = decks.deck_triangles(arrays, part)
+        fmt, includes = os.path.splitext(deck)[1].lstrip("."), len(arrays["files"]) > 1
+    else:
+        inputs.check_mesh(mesh)
+        fmt, includes = fmt or "stl", False
+        if fmt not in WRITE_FORMATS:
+            raise RoundingError(f"unknown mesh format {fmt!r}: one of {', '.join(WRITE_FORMATS)}")
+        vertices, triangles = meshconv.mesh_to_arrays(mesh)
     seed_points = inputs.seed_array(seeds)
-    vertices, triangles = meshconv.mesh_to_arrays(mesh)
     limits = radius_limits.max_radius_arrays(vertices, triangles, seed_points, feature_angle, reach) if check_limits else []
     chains = len(limits) if limits else len(seed_points)
     rows = radius_rows(radii, chains)
@@ -107,23 +128,12 @@ def sweep(mesh, seeds, radii, out_dir=None, fmt="stl", jobs=None, tolerance=None
         raise RoundingError("a sweep's variants must differ: a radius is repeated")
     if any(len(set(r)) > 1 for r in rows) and chains != len(seed_points):
         raise RoundingError("per-chain radii need exactly one seed per chain")
-    out_dir = out_dir or tempfile.mkdtemp(prefix="meshround_sweep_")
-    os.makedirs(out_dir, exist_ok=True)
-    options = dict(tolerance=tolerance, feature_angle=feature_angle, reach=reach)
-    todo, table, skipped = [], [None] * len(rows), []
-    for i, row in enumerate(rows):
-        over = [c for c, r in enumerate(row) if limits and r > limits[c].radius]
-        if over:
-            c = over[0]
-            table[i] = dict(index=i, radii=row, file=None, status="above_limit",
-                            message=f"chain {c}: r = {row[c]:g} mm is above its largest feasible radius "
-                                    f"{limits[c].radius:.6g} mm: {limits[c].reason}")
-            skipped.append(row[c])
-        else:
-            todo.append((i, row))
+    out_dir = _out_dir(out_dir)
+    table, todo = _within_limits(rows, limits)
     _WORK.clear()
     _WORK.update(vertices=vertices, triangles=triangles, seeds=seed_points, control_points=[tuple(p) for p in seed_points],
-                 options=options, out_dir=out_dir, fmt=fmt, stem=stem)
+                 options=dict(tolerance=tolerance, feature_angle=feature_angle, reach=reach), out_dir=out_dir,
+                 fmt=fmt, stem=stem, deck=deck, deck_includes=includes, part=part)
     jobs = _jobs(jobs, len(todo))
     if jobs == 1:
         done = [_variant(t) for t in todo]
@@ -132,13 +142,58 @@ def sweep(mesh, seeds, radii, out_dir=None, fmt="stl", jobs=None, tolerance=None
             done = list(pool.map(_variant, todo))
     for row in done:
         table[row["index"]] = row
+    return _finish(table, limits, out_dir, jobs, started, thickness, tool, k)
+
+
+def _deck_path(mesh, fmt, part):
+    """mesh's path when it is a solver deck (fmt None or the deck's own family), else None."""
+    family = deck_family(mesh) if isinstance(mesh, (str, os.PathLike)) else None
+    if family is None:
+        if isinstance(mesh, (str, os.PathLike)):
+            raise RoundingError(f"'{mesh}' is not a solver deck by its extension: give a Mesh.Mesh or a deck "
+                                f"({', '.join(sorted(decks.DECK_EXTENSIONS))})", code="invalid_input")
+        if part is not None:
+            raise RoundingError("part is for a solver deck only", code="invalid_input")
+        return None
+    if fmt is not None and deck_family("x." + str(fmt)) != family:
+        raise RoundingError(f"a {family} deck's variants are written as {family} decks, not {fmt!r} "
+                            "(no conversion between formats)", code="invalid_input")
+    return os.fspath(mesh)
+
+
+def _out_dir(out_dir):
+    out_dir = out_dir or tempfile.mkdtemp(prefix="meshround_sweep_")
+    os.makedirs(out_dir, exist_ok=True)
+    return out_dir
+
+
+def _within_limits(rows, limits):
+    """(table, todo): the table with an "above_limit" row for each variant past a chain's largest feasible
+    radius (None elsewhere), and the (index, radii) of the others, to be made."""
+    table, todo = [None] * len(rows), []
+    for i, row in enumerate(rows):
+        over = [c for c, r in enumerate(row) if limits and r > limits[c].radius]
+        if over:
+            c = over[0]
+            table[i] = dict(index=i, radii=row, file=None, status="above_limit",
+                            message=f"chain {c}: r = {row[c]:g} mm is above its largest feasible radius "
+                                    f"{limits[c].radius:.6g} mm: {limits[c].reason}")
+        else:
+            todo.append((i, row))
+    return table, todo
+
+
+def _finish(table, limits, out_dir, jobs, started, thickness, tool, k):
+    """The rule flags of every row, the "stopped at the feasible limit" line, the tables written."""
     if limits:
         for row in table:
             row["rules"] = radius_limits.check_rules(limits, row["radii"], thickness, tool, k)
     stopped = ""
+    skipped = [row for row in table if row["status"] == "above_limit"]
     if skipped:
+        over = [next(r for r, lim in zip(row["radii"], limits) if r > lim.radius) for row in skipped]
         smallest = min(limit.radius for limit in limits)
-        stopped = (f"{len(skipped)} of {len(rows)} variant(s) not made: r = {', '.join(f'{r:g}' for r in skipped)} mm above "
+        stopped = (f"{len(skipped)} of {len(table)} variant(s) not made: r = {', '.join(f'{r:g}' for r in over)} mm above "
                    f"the feasible limit ({smallest:.6g} mm for the tightest chain)")
     result = SweepResult(rows=table, limits=limits, out_dir=out_dir, table_csv=os.path.join(out_dir, "table.csv"),
                          table_json=os.path.join(out_dir, "table.json"), jobs=jobs,
@@ -246,3 +301,97 @@ def sweep_features(base, seeds, radii, tolerance=0, feature_angle=30, reach=3, d
         features.append(make_rounding(base, seeds, float(r), tolerance=tolerance, feature_angle=feature_angle,
                                       reach=reach, name=name, doc=doc))
     return features
+
+
+def sweep_sheet(rounding, sheet, column, out_dir=None, fmt="stl", thickness=None, tool="die", k=None,
+                check_limits=True, stem=None):
+    """In FreeCAD: sweep one parametric Rounding over the radii in a column of a Spreadsheet.
+
+    For each cell of `column` (e.g. "B"; a first cell that is not a number is a header) the Rounding's
+    Radius is bound to that cell by an expression (`Sheet.B2`, ...), the document is recomputed and the
+    Rounding's mesh is written to out_dir (None: a new temporary folder) as <stem>_NNN_r<radius>.<fmt>
+    (stem: the Rounding's name).  A radius above a chain's largest feasible radius (max_radius of the
+    Rounding's base and seeds; check_limits=False skips it) is not recomputed: its row says so (status
+    "above_limit") and SweepResult.stopped has the line, as for sweep.  A recompute that fails gives a row
+    with status "failed" and the feature's error.  The table (table.csv, table.json) is sweep's, each row
+    with the cell it came from.  Afterwards the Rounding's Radius (its value or expression) is as before,
+    recomputed.  thickness, tool, k: check_rules' stamping rule.  Returns a SweepResult (jobs 1)."""
+    from .objects.rounding import check_base
+    started = time.perf_counter()
+    if not hasattr(rounding, "Seeds") or not hasattr(rounding, "Radius") or not hasattr(rounding, "Base"):
+        raise RoundingError(f"{getattr(rounding, 'Label', rounding)!r} is not a Rounding feature")
+    if len(rounding.RadiusLaw):
+        raise RoundingError(f"{rounding.Label} has a variable radius law: the sheet sweep sets its constant Radius; "
+                            "empty the law first")
+    if getattr(sheet, "TypeId", "") != "Spreadsheet::Sheet" or sheet.Document != rounding.Document:
+        raise RoundingError("sheet must be a Spreadsheet in the Rounding's document")
+    if fmt not in WRITE_FORMATS:
+        raise RoundingError(f"unknown mesh format {fmt!r}: one of {', '.join(WRITE_FORMATS)}")
+    check_base(rounding.Base)
+    cells, radii = sheet_column(sheet, column)
+    seeds = list(rounding.Seeds)
+    limits = (radius_limits.max_radius(rounding.Base.Mesh, seeds, rounding.FeatureAngle.Value, rounding.Reach)
+              if check_limits else [])
+    rows = radius_rows(radii, len(limits) if limits else len(seeds))
+    out_dir = _out_dir(out_dir)
+    stem = stem or rounding.Name
+    table, todo = _within_limits(rows, limits)
+    doc = rounding.Document
+    saved_expression = dict((p.lstrip("."), e) for p, e in rounding.ExpressionEngine).get("Radius")
+    saved_value = rounding.Radius.Value
+    try:
+        for i, row in todo:
+            rounding.setExpression("Radius", f"{sheet.Name}.{cells[i]}")
+            doc.recompute()
+            entry = dict(index=i, radii=row, file=None, status="ok", message="")
+            if "Invalid" in rounding.State or abs(rounding.Radius.Value - row[0]) > 1e-9 * max(1.0, row[0]):
+                entry.update(status="failed", message=rounding.getStatusString() or "recompute failed")
+            else:
+                name = f"{stem}_{i:03d}_r{row[0]:g}.{fmt}"
+                rounding.Mesh.write(os.path.join(out_dir, name))
+                report = {key: _number(value) for key, value in rounding.Statistics.items()}
+                entry.update(file=name, report=report)
+                entry.update({key: report.get(key) for key in TABLE_COLUMNS})
+            table[i] = entry
+    finally:
+        rounding.setExpression("Radius", saved_expression)
+        if saved_expression is None:
+            rounding.Radius = saved_value
+        doc.recompute()
+    for entry, cell in zip(table, cells):
+        entry["cell"] = cell
+    return _finish(table, limits, out_dir, 1, started, thickness, tool, k)
+
+
+def sheet_column(sheet, column):
+    """(cells, radii) of a Spreadsheet column, top to bottom: the used cells' addresses and numbers (mm);
+    a first cell that is not a number is a header and left out; an empty sheet column is refused."""
+    import re
+    column = str(column).upper()
+    if not re.fullmatch(r"[A-Z]{1,2}", column):
+        raise RoundingError(f"column must be a spreadsheet column's letters (A ... ZZ), got {column!r}")
+    used = sorted({int(row) for row in re.findall(rf'address="{column}(\d+)"', sheet.cells.Content)})
+    cells, radii = [], []
+    for n, row in enumerate(used):
+        address = f"{column}{row}"
+        value = sheet.get(address)
+        value = getattr(value, "Value", value)  # a quantity (e.g. "5 mm"): its value in mm
+        if isinstance(value, bool) or not isinstance(value, (int, float)):
+            if n == 0:
+                continue  # a header
+            raise RoundingError(f"{sheet.Label}.{address} is not a radius: {value!r}")
+        cells.append(address)
+        radii.append(float(value))
+    if not cells:
+        raise RoundingError(f"{sheet.Label} has no radii in column {column}")
+    return cells, radii
+
+
+def _number(text):
+    """A Statistics value (a string) as the number it was, when it was one."""
+    for kind in (int, float):
+        try:
+            return kind(text)
+        except ValueError:
+            pass
+    return text

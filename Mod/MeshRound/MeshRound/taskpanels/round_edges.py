@@ -21,7 +21,7 @@ import FreeCAD
 import FreeCADGui
 from PySide import QtCore, QtGui
 
-from .. import api, meshconv, progress, radius_limits, shapes
+from .. import api, inputs, meshconv, progress, radius_limits, shapes
 from ..errors import RoundingError
 from . import overlays
 from .round_edges_form import PICK_LAW_POINT, RoundEdgesForm, quantity_value
@@ -31,7 +31,9 @@ PREVIEW_DELAY_MS = 150   # debounce: recompute the preview once the user stops t
 # the same round, and several times faster on big meshes); OK rounds at the tolerance asked for.
 PREVIEW_TOLERANCE_FRACTION = 1.0 / 30.0
 GHOST_TRANSPARENCY = 70  # the base mesh stays pickable but lets the preview show through
-DEFAULTS = dict(radius=5.0, tolerance=0.0, feature_angle=30.0, reach=3.0)
+# The panel's starting values.  thickness: the sheet thickness for the rule r >= k.t (0: no rule check; k is
+# radius_limits.DEFAULT_K of the tool); neither is stored in the Rounding, they only check the radius.
+DEFAULTS = dict(radius=5.0, tolerance=0.0, feature_angle=30.0, reach=3.0, thickness=0.0, tool="die")
 
 _active = None  # weak reference to the open panel
 
@@ -47,7 +49,7 @@ class RoundEdgesPanel:
     def __init__(self, base, feature=None, seeds=()):
         self.base, self.feature, self.doc = base, feature, base.Document
         self.vertices, self.triangles = meshconv.mesh_to_arrays(base.Mesh)  # once: every pick traces
-        values = _feature_values(feature) if feature else dict(DEFAULTS, seeds=[], law=[])
+        values = dict(DEFAULTS, **_feature_values(feature)) if feature else dict(DEFAULTS, seeds=[], law=[])
         self.seeds = [FreeCAD.Vector(p) for p in values["seeds"]]
         self.law = list(values["law"])
         self.chain_wires, self.result, self.error = [], None, None
@@ -59,7 +61,7 @@ class RoundEdgesPanel:
         self.cancelled_by = None    # how the last run was cancelled: None, "esc", "button" or "panel"
 
         self.form = RoundEdgesForm(values["radius"], values["tolerance"], values["feature_angle"],
-                                   values["reach"])
+                                   values["reach"], values["thickness"], values["tool"])
         self._radius_expression = _expression_of(feature, "Radius")
         self._timer = QtCore.QTimer()
         self._timer.setSingleShot(True)
@@ -140,7 +142,7 @@ class RoundEdgesPanel:
         radius = ([(FreeCAD.Vector(*row[:3]), row[3]) for row in self.law] if self.law
                   else quantity_value(self.form.radius))
         return dict(seeds=list(self.seeds), radius=radius,
-                    tolerance=quantity_value(self.form.tolerance) or None,
+                    tolerance=self.form.tolerance.value() or None,
                     feature_angle=self.feature_angle(), reach=self.form.reach.value())
 
     def schedule_preview(self):
@@ -157,7 +159,7 @@ class RoundEdgesPanel:
         """parameters() with the preview's (coarser) tolerance; and the tolerance OK will use, in mm."""
         p = self.parameters()
         largest = max(r for _, r in p["radius"]) if isinstance(p["radius"], list) else p["radius"]
-        final = p["tolerance"] or largest / 100.0
+        final = p["tolerance"] or inputs.automatic_tolerance(largest)
         p["tolerance"] = max(final, largest * PREVIEW_TOLERANCE_FRACTION)
         return p, final
 
@@ -351,6 +353,9 @@ class RoundEdgesPanel:
         f = self.form
         for box in (f.radius, f.tolerance, f.reach):
             box.valueChanged.connect(lambda *_: self.schedule_preview())
+        f.radius.valueChanged.connect(lambda *_: self._show_limit())
+        f.thickness.valueChanged.connect(lambda *_: self._show_rules())
+        f.tool.currentIndexChanged.connect(lambda *_: self._show_rules())
         f.feature_angle.valueChanged.connect(lambda *_: self._seeds_changed())
         f.reach.valueChanged.connect(lambda *_: self._measure_limits())
         f.law_table.itemChanged.connect(lambda *_: self._law_edited())
@@ -431,6 +436,38 @@ class RoundEdgesPanel:
             self.form.show_limit(f"{tightest.radius:.4g} mm ({radius_limits.WHY_TEXT.get(tightest.why, tightest.why)})")
         else:
             self.form.show_limit("")
+        self._show_rules()
+
+    def rule_check(self):
+        """check_rules' rows for the radius (a law's smallest), the sheet thickness and the tool type, against
+        the picked chains' limits; [] when there is nothing to check (no chain, or no thickness and no limit)."""
+        thickness = quantity_value(self.form.thickness) or None
+        limits = None if self.law else (self.limits or None)
+        if not self.seeds or (thickness is None and limits is None):
+            return []
+        radius = min(row[3] for row in self.law) if self.law else quantity_value(self.form.radius)
+        try:
+            return radius_limits.check_rules(limits, radius, thickness, self.form.tool_type())
+        except RoundingError:
+            return []  # a radius of 0: the preview says why
+
+    def _show_rules(self):
+        """The rule line beside the limit: the flags and why, in red; or that the k.t rule is met."""
+        rows = self.rule_check()
+        flagged = [row for row in rows if row["flags"]]
+        if flagged:
+            flags = sorted({flag for row in flagged for flag in row["flags"]})
+            messages = list(dict.fromkeys(row["message"] for row in flagged))
+            self.form.show_rules(f"{', '.join(radius_limits.FLAG_TEXT[f] for f in flags)}: {'; '.join(messages)}",
+                                 error=True)
+        elif rows and rows[0]["min_radius"] is not None:
+            smallest = max(row["min_radius"] for row in rows)
+            self.form.show_rules(f"r >= {smallest:g} mm ({self.form.tool_type()}, "
+                                 f"{radius_limits.DEFAULT_K[self.form.tool_type()]:g} t): met")
+        else:
+            self.form.show_rules("")
+        largest = max((row[3] for row in self.law), default=0.0) if self.law else quantity_value(self.form.radius)
+        self.form.show_automatic_tolerance(largest)
 
     def _law_edited(self):
         try:
@@ -467,6 +504,7 @@ class RoundEdgesPanel:
             reason = None
         self.form.radius.setEnabled(reason is None)
         self.form.radius.setToolTip(reason or "Rolling ball radius")
+        self._show_rules()  # the rule line and the automatic tolerance follow the radius (or the law)
 
     def _show_error(self, message):
         self.error = message

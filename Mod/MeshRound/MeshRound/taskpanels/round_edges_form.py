@@ -2,7 +2,7 @@
 import FreeCADGui
 from PySide import QtCore, QtGui
 
-from .. import errors
+from .. import errors, inputs, radius_limits
 
 PICK_SEED, PICK_LAW_POINT = "seed", "law"
 LAW_COLUMNS = ("X", "Y", "Z", "Radius")
@@ -27,12 +27,12 @@ def quantity_value(box):
 class RoundEdgesForm(QtGui.QWidget):
     """Seeds list, pick mode, radius (constant or law table), options, preview switch, status line."""
 
-    def __init__(self, radius, tolerance, feature_angle, reach):
+    def __init__(self, radius, tolerance, feature_angle, reach, thickness, tool):
         super().__init__()
         self.setWindowTitle("Round sharp edges")
         layout = QtGui.QVBoxLayout(self)
         layout.addWidget(self._edges_group())
-        layout.addWidget(self._radius_group(radius))
+        layout.addWidget(self._radius_group(radius, thickness, tool))
         layout.addWidget(self._options_group(tolerance, feature_angle, reach))
         self.live_preview = QtGui.QCheckBox("Live preview")
         self.live_preview.setChecked(True)
@@ -71,7 +71,7 @@ class RoundEdgesForm(QtGui.QWidget):
         layout.addWidget(self.pick_law)
         return group
 
-    def _radius_group(self, radius):
+    def _radius_group(self, radius, thickness, tool):
         group = QtGui.QGroupBox("Radius")
         layout = QtGui.QVBoxLayout(group)
         row = QtGui.QFormLayout()
@@ -82,6 +82,19 @@ class RoundEdgesForm(QtGui.QWidget):
         self.radius_limit = QtGui.QLabel("")
         self.radius_limit.setWordWrap(True)
         row.addRow("Largest:", self.radius_limit)
+        # the stamping rule r >= k.t (radius_limits.check_rules) for a sheet thickness t and the tool's k
+        rule = ", ".join(f"{name} r >= {k:g} t" for name, k in radius_limits.DEFAULT_K.items())
+        self.thickness = quantity_box("mm", thickness, tooltip=f"Sheet thickness t for the rule ({rule}); "
+                                                               "0: no rule check")
+        row.addRow("Sheet thickness (0 = no rule check):", self.thickness)
+        self.tool = QtGui.QComboBox()
+        self.tool.addItems(list(radius_limits.DEFAULT_K))
+        self.tool.setCurrentText(tool)
+        self.tool.setToolTip(f"The tool the radius is on: {rule}")
+        row.addRow("Tool:", self.tool)
+        self.rule_check = QtGui.QLabel("")
+        self.rule_check.setWordWrap(True)
+        row.addRow("Rules:", self.rule_check)
         layout.addLayout(row)
         law_hint = QtGui.QLabel("Variable radius: with \"a variable-radius point\" checked, click near the "
                                 "chain; each point lands on the chain (empty table: constant radius).")
@@ -102,7 +115,15 @@ class RoundEdgesForm(QtGui.QWidget):
     def _options_group(self, tolerance, feature_angle, reach):
         group = QtGui.QGroupBox("Options")
         layout = QtGui.QFormLayout(group)
-        self.tolerance = quantity_box("mm", tolerance, tooltip="Chordal tolerance; 0 = radius / 100")
+        # A plain spin box: at 0 it says what automatic is (show_automatic_tolerance), which
+        # Gui::QuantitySpinBox cannot (it ignores Qt's special-value text).
+        self.tolerance = QtGui.QDoubleSpinBox()
+        self.tolerance.setRange(0.0, 1e6)
+        self.tolerance.setDecimals(3)
+        self.tolerance.setSingleStep(0.01)
+        self.tolerance.setSuffix(" mm")
+        self.tolerance.setValue(tolerance)
+        self.tolerance.setToolTip(f"Chordal tolerance; 0 = radius / {1 / inputs.AUTO_TOLERANCE_FRACTION:g}")
         self.feature_angle = quantity_box("deg", feature_angle, minimum=1.0, maximum=179.0,
                                           tooltip="An edge is sharp when its facets turn by at least this")
         self.reach = QtGui.QDoubleSpinBox()
@@ -158,6 +179,20 @@ class RoundEdgesForm(QtGui.QWidget):
         """The radius limit beside the radius field; in red when the radius is past it."""
         self.radius_limit.setStyleSheet("color: #c00000; font-weight: bold;" if error else "")
         self.radius_limit.setText(text)
+
+    def tool_type(self):
+        return self.tool.currentText()
+
+    def show_rules(self, text, error=False):
+        """The rule check beside the radius limit; in red when a rule is broken."""
+        self.rule_check.setStyleSheet("color: #c00000; font-weight: bold;" if error else "")
+        self.rule_check.setText(text)
+
+    def show_automatic_tolerance(self, largest_radius):
+        """What a tolerance of 0 means for this radius, shown in the field at 0."""
+        self.tolerance.setSpecialValueText(
+            f"automatic (r / {1 / inputs.AUTO_TOLERANCE_FRACTION:g} = "
+            f"{inputs.automatic_tolerance(largest_radius):.3g} mm)")
 
     def show_corners(self, text, error=False):
         """The picked chains' corners and their blends; in red for a corner that would be refused."""
