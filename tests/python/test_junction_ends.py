@@ -16,6 +16,16 @@ import reference
 import MeshRound
 
 
+def assert_sound_and_like_occt(case, mesh, res):
+    """Within r / 100 of OCCT's fillet both ways; watertight, oriented, local, no degenerate or crossing facets."""
+    row = reference.score(case, mesh, res.mesh, res.report)
+    assert row["dev_out_to_ref"] <= 0.01 and row["dev_ref_to_out"] <= 0.01, row
+    assert row["boundary_edges_out"] == row["boundary_edges_in"] == 0
+    assert (row["nonmanifold_edges"], row["misoriented_edges"], row["degenerate_facets"]) == (0, 0, 0)
+    assert row["orientation_kept"] and not row["self_intersections"]
+    assert row["far_vertices_lost"] == row["far_facets_lost"] == row["far_facets_added"] == 0
+
+
 @pytest.mark.parametrize("draft, radius", [(0.0, 10.0), (0.0, 11.76), (10.0, 11.5), (10.0, 14.2)])
 def test_a_rim_edge_rounds_into_the_walls_at_its_ends_up_to_its_limit(draft, radius):
     case = cases.Case(f"pocket_edge_{draft:g}_r{radius:g}", cases.pocket_edge(draft), radius)
@@ -23,12 +33,7 @@ def test_a_rim_edge_rounds_into_the_walls_at_its_ends_up_to_its_limit(draft, rad
     before = mesh.Topology
     res = MeshRound.round_edges(mesh, case.seeds, radius)
     assert mesh.Topology == before
-    row = reference.score(case, mesh, res.mesh, res.report)
-    assert row["dev_out_to_ref"] <= 0.01 and row["dev_ref_to_out"] <= 0.01, row
-    assert row["boundary_edges_out"] == row["boundary_edges_in"] == 0
-    assert (row["nonmanifold_edges"], row["misoriented_edges"], row["degenerate_facets"]) == (0, 0, 0)
-    assert row["orientation_kept"] and not row["self_intersections"]
-    assert row["far_vertices_lost"] == row["far_facets_lost"] == row["far_facets_added"] == 0
+    assert_sound_and_like_occt(case, mesh, res)
 
 
 # The whole rim, its four rounds mitred at the corners: where a round runs past its chain's end to the
@@ -42,9 +47,4 @@ def test_a_square_rim_mitres_at_large_radii(radius):
     mesh = cases.mesh_of(case.solid, MaxLength=1.5)
     res = MeshRound.round_edges(mesh, case.seeds, radius)
     assert [c["kind"] for c in res.report["corners"]] == ["mitre"] * 4
-    row = reference.score(case, mesh, res.mesh, res.report)
-    assert row["dev_out_to_ref"] <= 0.01 and row["dev_ref_to_out"] <= 0.01, row
-    assert row["boundary_edges_out"] == row["boundary_edges_in"] == 0
-    assert (row["nonmanifold_edges"], row["misoriented_edges"], row["degenerate_facets"]) == (0, 0, 0)
-    assert row["orientation_kept"] and not row["self_intersections"]
-    assert row["far_vertices_lost"] == row["far_facets_lost"] == row["far_facets_added"] == 0
+    assert_sound_and_like_occt(case, mesh, res)
