@@ -16,14 +16,6 @@ constexpr double kCoordinatePrecision = 1e-6;     // relative to the mesh's larg
 constexpr double kMinTolerancePerPrecision = 1;   // tolerance >= the precision
 constexpr double kMinRadiusPerPrecision = 100;    // radius >= 100 x the precision (its r / 100 >= the precision)
 
-// Largest |coordinate| of the finite coordinates (the mesh's own check refuses the others).
-double coordinate_magnitude(const Points& V) {
-  double m = 0;
-  for (Eigen::Index i = 0; i < V.size(); ++i)
-    if (std::isfinite(V.data()[i])) m = std::max(m, std::abs(V.data()[i]));
-  return m;
-}
-
 // The limits the mesh's precision sets (the options' own ranges are validate_options'); `magnitude` is
 // the mesh's largest |coordinate|.
 void check_precision(const RoundOptions& o, double magnitude) {
@@ -67,6 +59,13 @@ void check_facet_edges(const MeshTopology& mesh, const std::vector<int>& facets,
         throw RoundingError(ErrorCode::NonManifoldInput, "the facets at " + format_point(mid) + " near " + near +
                             " are oriented against each other (a flipped facet); repair the mesh there first");
     }
+}
+
+double coordinate_magnitude(const Points& V) {
+  double m = 0;
+  for (Eigen::Index i = 0; i < V.size(); ++i)
+    if (std::isfinite(V.data()[i])) m = std::max(m, std::abs(V.data()[i]));
+  return m;
 }
 
 }  // namespace meshround

@@ -11,6 +11,10 @@
 
 namespace meshround {
 
+// Largest |coordinate| of the finite coordinates (the mesh's own check refuses the others): the magnitude
+// the mesh's float32 precision is judged by (on_plane_slack), here and in the passes.
+double coordinate_magnitude(const Points& V);
+
 // The options (validate_options), the radius and tolerance against the mesh's precision
 // (radius_too_small, naming the smallest value that works), and at least one seed.
 void check_call(const Points& V, const std::vector<Vec3>& seeds, const RoundOptions& opt);

@@ -1,5 +1,6 @@
 #include "meshround/trim.h"
 #include "meshround/cancel.h"
+#include "call_checks.h"
 
 #include <algorithm>
 #include <cmath>
@@ -197,14 +198,17 @@ TrimLines trim_base_meshes(const MeshTopology& mesh, const SharpChain& chain, co
     }
   const std::unordered_set<int> chain_vertices(chain.vertices.begin(), chain.vertices.end());
   // Capped ends cut by their end face (ends.h): there the band stops at the face's plane. `plane_slack`:
-  // "on" that plane, for float32 coordinates.
+  // "on" that plane, for float32 coordinates -- of the mesh's magnitude, not the chain's: two rounds meeting
+  // at a corner must agree whether a vertex there is on their lines (a mitre's foot 5e-5 from a mesh
+  // vertex on the pocket's wall corner was on the first round's line and off the second's).
   const EndCut* cuts[2] = {nullptr, nullptr};
   double plane_slack = 0;
+  const double magnitude = coordinate_magnitude(mesh.V);
   for (int end = 0; end < 2 && !chain.closed; ++end) {
     const ProfileStation& st = end ? end_profiles.back() : end_profiles.front();
     if (!st.cut.active) continue;
     cuts[end] = &st.cut;
-    plane_slack = std::max(plane_slack, on_plane_slack(st.radius, st.cut.point.cwiseAbs().maxCoeff()));
+    plane_slack = std::max(plane_slack, on_plane_slack(st.radius, std::max(magnitude, st.cut.point.cwiseAbs().maxCoeff())));
   }
   auto past_end = [&](const Vec3& p) {
     double past = -INFINITY;

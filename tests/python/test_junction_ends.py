@@ -48,3 +48,17 @@ def test_a_square_rim_mitres_at_large_radii(radius):
     res = MeshRound.round_edges(mesh, case.seeds, radius)
     assert [c["kind"] for c in res.report["corners"]] == ["mitre"] * 4
     assert_sound_and_like_occt(case, mesh, res)
+
+
+# Where a mitre's foot on the pocket's wall corner falls a hair (5e-5 mm) from a mesh vertex there: the two
+# rounds meeting at it judged "on the line" with slacks of their own (6e-5 and 4.5e-5 mm, from their
+# chains' coordinates), so one took the vertex as its corner and the other cut beside it (a degenerate
+# facet). The slack is now the mesh's (its float32 precision), the same for every round.
+@pytest.mark.parametrize("element", [1.0, 3.0])
+def test_a_mitres_foot_a_hair_from_a_mesh_vertex_is_that_vertex(element):
+    radius = 9.0 - 5e-5  # the wall contact at z = 21 + 5e-5; both meshes have a vertex at z = 21 on the corner
+    case = cases.Case(f"pocket_rim_square_foot_{element:g}", cases.pocket_rim_square(0.0), radius)
+    mesh = cases.mesh_of(case.solid, MaxLength=element)
+    res = MeshRound.round_edges(mesh, case.seeds, radius)
+    assert [c["kind"] for c in res.report["corners"]] == ["mitre"] * 4
+    assert_sound_and_like_occt(case, mesh, res)
