@@ -98,13 +98,17 @@ struct Ends {
   double r = -1;
   bool fits = true;
   EndPlan plan;
+  int corner_end = -1;  // the one end at a corner with other picked chains, if only one is
   const EndPlan* at(const SpineContext& ctx, double radius) {
     if (radius != r) {
       r = radius;
       try {
         RoundOptions constant;
         constant.radius = radius;
-        plan = plan_ends(ctx, RadiusLaw(constant, ctx.chain, 0), corners(radius));
+        const NetworkPart net = corners(radius);
+        const bool at[2] = {corner_at(net, ctx.chain.points.front()) != nullptr, corner_at(net, ctx.chain.points.back()) != nullptr};
+        corner_end = at[0] != at[1] ? (at[0] ? 0 : 1) : -1;
+        plan = plan_ends(ctx, RadiusLaw(constant, ctx.chain, 0), net);
         fits = true;
       } catch (const RoundingError& e) {
         if (e.code != ErrorCode::RadiusTooLarge && e.code != ErrorCode::CornerNotBlendable && e.code != ErrorCode::BeyondReach) throw;
@@ -260,7 +264,9 @@ ChainRoom measure_chain(const MeshTopology& mesh, const SharpChain& chain, const
     if (b.hi == INFINITY) break;  // everything up to cap fits (the first round: up to the mesh's size)
     room.radius_refused = b.hi;
     room.why = limit_kind(mesh, c->base, b, other_chains);
-    room.where = b.at_end ? chain.point_at(b.s < 0.5 * chain.length ? 0 : chain.length) : b.fit.at;
+    // (A refused end plan names the end at the corner, or else the end nearer the station.)
+    const int end = ends.corner_end >= 0 ? ends.corner_end : b.s < 0.5 * chain.length ? 0 : 1;
+    room.where = b.at_end ? chain.point_at(end ? chain.length : 0) : b.fit.at;
     room.side = b.at_end ? -1 : b.fit.side;
     room.chain_point = b.at_end ? room.where : chain.point_at(b.s);
     if (room.why == RoomLimit::Curvature) room.curvature_radius = 1 / chain_curvature(chain, b.s, b.hi).norm();

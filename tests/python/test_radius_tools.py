@@ -116,15 +116,16 @@ def rim_limit(draft_deg):
     return 12 / math.cos(math.radians(draft_deg)) * math.tan(math.radians((90 + draft_deg) / 2))
 
 
-NETWORK_FORMS = [
-    ("square rim", lambda: cases.pocket_rim_square(0.0)(), rim_limit(0.0), "face_end"),
-    ("drafted rim", lambda: cases.pocket_rim_square(10.0)(), rim_limit(10.0), "face_end"),
-    ("box corner, three rounds", lambda: (Part.makeBox(100, 60, 40), None), 20 / 1.02, "end_setback"),
+NETWORK_FORMS = [  # (name, solid and edges, true limit, why, a check of where)
+    ("square rim", lambda: cases.pocket_rim_square(0.0)(), rim_limit(0.0), "face_end", lambda w: abs(w.z - 18) < 0.2),
+    ("drafted rim", lambda: cases.pocket_rim_square(10.0)(), rim_limit(10.0), "face_end", lambda w: abs(w.z - 18) < 0.2),
+    ("box corner, three rounds", lambda: (Part.makeBox(100, 60, 40), None), 20 / 1.02, "end_setback",
+     lambda w: (w - V(100, 60, 40)).Length < 1e-6),
 ]
 
 
-@pytest.mark.parametrize("name, build, limit, why", NETWORK_FORMS, ids=[c[0] for c in NETWORK_FORMS])
-def test_max_radius_of_a_network_matches_its_closed_form_and_the_engine(name, build, limit, why):
+@pytest.mark.parametrize("name, build, limit, why, where", NETWORK_FORMS, ids=[c[0] for c in NETWORK_FORMS])
+def test_max_radius_of_a_network_matches_its_closed_form_and_the_engine(name, build, limit, why, where):
     solid, edges = build()
     seeds = ([e.valueAt(0.5 * (e.FirstParameter + e.LastParameter)) for e in edges] if edges
              else [V(50, 60, 40), V(100, 30, 40), V(100, 60, 20)])
@@ -134,6 +135,7 @@ def test_max_radius_of_a_network_matches_its_closed_form_and_the_engine(name, bu
     tightest = min(found, key=lambda f: f.radius)
     assert abs(tightest.radius - limit) <= 0.005 * limit, (tightest.radius, limit)
     assert tightest.why == why, tightest.reason
+    assert where(tightest.where), tightest.where  # the floor's edge; the corner the setbacks run into
     res = MeshRound.round_edges(mesh, seeds, 0.98 * tightest.radius)
     assert soundness.problems(V0, F0, res.vertices, res.triangles) == []
     with pytest.raises(MeshRound.RoundingError) as err:
