@@ -222,8 +222,9 @@ py::dict result_dict(const RoundResult& res, bool arrays, bool with_delta) {
   rep["reach_for_room"] = r.reach_for_room;
   rep["seconds_total"] = r.seconds_total, rep["seconds_per_pass"] = r.seconds;
   rep["per_chain"] = chain_reports;
-  py::list corners;
+  py::list corners, corner_faces;
   for (const CornerReport& c : r.corners) {
+    if (!c.brep.empty()) corner_faces.append(py::bytes(c.brep).attr("decode")("ascii"));
     py::dict d;
     d["vertex"] = py::make_tuple(c.vertex.x(), c.vertex.y(), c.vertex.z()), d["kind"] = c.kind, d["chains"] = c.chains;
     d["radius"] = c.radius, d["seam_vertices"] = c.seam_vertices, d["deviation"] = c.deviation;
@@ -232,6 +233,7 @@ py::dict result_dict(const RoundResult& res, bool arrays, bool with_delta) {
   }
   rep["corners"] = corners;
   out["report"] = rep;
+  out["corner_faces"] = corner_faces;
   return out;
 }
 

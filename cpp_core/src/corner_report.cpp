@@ -1,5 +1,7 @@
 #include "corner_report.h"
 
+#include "meshround/surface.h"
+
 #include <algorithm>
 #include <cmath>
 #include <map>
@@ -126,6 +128,8 @@ CornerReport sphere_report(const Points& V, const Triangles& F, const SphereCorn
                            const std::vector<RoundedChain>& rounds) {
   CornerReport c;
   c.vertex = ball.vertex, c.kind = "sphere", c.chains = ids, c.radius = ball.radius;
+  const TopoDS_Face face = sphere_patch_face(ball.centre, ball.radius, ball.feet, ball.vertex - ball.centre);
+  if (!face.IsNull()) c.brep = face_to_brep(face);
   const double r = ball.radius, slack = kOnPlaneShare * std::max(r, ball.vertex.cwiseAbs().maxCoeff() * 1e-2);
   auto on_ball = [&](const Vec3& p) { return std::abs((p - ball.centre).norm() - r) <= kOnSurfaceShare * r; };
   auto in_patch = [&](const Vec3& p) {

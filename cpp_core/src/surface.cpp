@@ -1,6 +1,17 @@
 #include "meshround/surface.h"
 
+#include <BRepBuilderAPI_MakeEdge.hxx>
 #include <BRepBuilderAPI_MakeFace.hxx>
+#include <BRepBuilderAPI_MakeWire.hxx>
+#include <BRepGProp.hxx>
+#include <GC_MakeArcOfCircle.hxx>
+#include <GProp_GProps.hxx>
+#include <Geom_SphericalSurface.hxx>
+#include <ShapeFix_Face.hxx>
+#include <TopoDS.hxx>
+#include <TopoDS_Wire.hxx>
+#include <gp_Ax3.hxx>
+#include <algorithm>
 #include <BRepTools.hxx>
 #include <GeomAPI_Interpolate.hxx>
 #include <Geom_BSplineCurve.hxx>
@@ -194,6 +205,57 @@ void RoundingSurface::d1(double u, double v, Vec3& p, Vec3& du, Vec3& dv) const 
   gp_Vec U, V;
   adaptor->D1(wrap(u), v, P, U, V);
   p = to_vec(P.XYZ()), du = to_vec(U.XYZ()), dv = to_vec(V.XYZ());
+}
+
+namespace {
+
+// The face of `ball` bounded by the shorter great-circle arcs between consecutive feet, in that order.
+TopoDS_Face ball_face(const Handle(Geom_SphericalSurface)& ball, const Vec3& centre, double radius, const std::vector<Vec3>& feet) {
+  auto pnt = [](const Vec3& p) { return gp_Pnt(p.x(), p.y(), p.z()); };
+  BRepBuilderAPI_MakeWire wire;
+  for (size_t k = 0; k < feet.size(); ++k) {
+    const Vec3 &a = feet[k], &b = feet[(k + 1) % feet.size()];
+    const Vec3 mid = centre + radius * ((a - centre) + (b - centre)).normalized();
+    const GC_MakeArcOfCircle arc(pnt(a), pnt(mid), pnt(b));
+    if (!arc.IsDone()) return TopoDS_Face();
+    wire.Add(BRepBuilderAPI_MakeEdge(arc.Value()).Edge());
+  }
+  if (!wire.IsDone()) return TopoDS_Face();
+  BRepBuilderAPI_MakeFace make(ball, wire.Wire(), true);
+  if (!make.IsDone()) return TopoDS_Face();
+  ShapeFix_Face fix(make.Face());  // (the arcs' curves on the ball)
+  fix.Perform();
+  return fix.Face();
+}
+
+double area(const TopoDS_Face& face) {
+  GProp_GProps props;
+  BRepGProp::SurfaceProperties(face, props);
+  return props.Mass();
+}
+
+}  // namespace
+
+TopoDS_Face sphere_patch_face(const Vec3& centre, double radius, std::vector<Vec3> feet, const Vec3& toward_corner) {
+  const Vec3 axis = toward_corner.normalized();
+  const Vec3 x = (std::abs(axis.x()) < 0.9 ? Vec3::UnitX() : Vec3::UnitY()).cross(axis).normalized(), y = axis.cross(x);
+  auto angle = [&](const Vec3& p) { return std::atan2((p - centre).dot(y), (p - centre).dot(x)); };
+  std::sort(feet.begin(), feet.end(), [&](const Vec3& a, const Vec3& b) { return angle(a) < angle(b); });
+  try {
+    // The ball's poles on a great circle through the patch's middle, its seam opposite the patch: the patch
+    // lies in one smooth chart of the parametrisation.
+    const Handle(Geom_SphericalSurface) ball = new Geom_SphericalSurface(
+        gp_Ax3(gp_Pnt(centre.x(), centre.y(), centre.z()), gp_Dir(y.x(), y.y(), y.z()), gp_Dir(-axis.x(), -axis.y(), -axis.z())), radius);
+    // The patch lies under a hemisphere: a face whose area is not that way round is bounded the other way.
+    for (int turn = 0; turn < 2; ++turn, std::reverse(feet.begin(), feet.end())) {
+      const TopoDS_Face face = ball_face(ball, centre, radius, feet);
+      if (face.IsNull()) return face;
+      const double a = area(face);
+      if (a > 0 && a < 2 * M_PI * radius * radius) return face;
+    }
+  } catch (const Standard_Failure&) {
+  }
+  return TopoDS_Face();
 }
 
 std::string face_to_brep(const TopoDS_Face& face) {

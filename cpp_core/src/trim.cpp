@@ -449,13 +449,19 @@ TrimLines trim_base_meshes(const MeshTopology& mesh, const SharpChain& chain, co
         for (int g : pair)
           if (!cut_facets.count(g)) rebuild.insert(g);
       }
-    // q (in facet f's plane) inside f or on its sides, with its corners where the snaps put them.
-    auto inside_facet = [&](int f, const Vec3& q) {
+    // q (in facet f's plane) a hair outside one of f's sides -- within kHairShare of the tolerance (the sag
+    // the line's points are spaced for, below), with its corners where the snaps put them. (A line that runs
+    // well outside a thin CAD facet and back, by 0.7 mm and more on the S chain's, is taken as it is.)
+    constexpr double kHairShare = 0.25;
+    auto hair_outside = [&](int f, const Vec3& q) {
       const Vec3 c[3] = {edit.point(mesh.F(f, 0)), edit.point(mesh.F(f, 1)), edit.point(mesh.F(f, 2))};
-      const Vec3 n = (c[1] - c[0]).cross(c[2] - c[0]);
-      for (int k = 0; k < 3; ++k)
-        if ((c[(k + 1) % 3] - c[k]).cross(q - c[k]).dot(n) < 0) return false;
-      return true;
+      const Vec3 n = (c[1] - c[0]).cross(c[2] - c[0]).normalized();
+      for (int k = 0; k < 3; ++k) {
+        const Vec3 side = c[(k + 1) % 3] - c[k];
+        const double out = -side.cross(q - c[k]).dot(n) / side.norm();  // > 0 outside this side
+        if (out > 0 && out <= kHairShare * opt.tolerance) return true;
+      }
+      return false;
     };
     for (int f : base.facets[side]) {
       poll_cancel();
@@ -519,7 +525,7 @@ TrimLines trim_base_meshes(const MeshTopology& mesh, const SharpChain& chain, co
             const Vec3 q = on_facet(u);
             // Where the line leaves a kept corner snapped onto it nearly along the facet's side, a point of it
             // can fall a hair outside the facet: it would fold the polygon back on that side. None there.
-            if (!inside_facet(f, q)) continue;
+            if (hair_outside(f, q)) continue;
             const int id = edit.add_point(q);
             out.line[side].push_back({id, u});
             polygon.push_back(id);

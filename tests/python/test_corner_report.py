@@ -5,6 +5,7 @@ Expectations come from the CAD solids, not from the engine: the corners are the 
 the picked edges meet; a mitre's largest normal jump is the crease the rounds meet in at the edge left
 sharp (the angle between the two faces' normals there, as in OCCT's fillet); a sphere patch joins its
 three rounds tangentially (0 deg). Deviations are held to the tolerance, r / 100."""
+import math
 import os
 
 import numpy as np
@@ -69,6 +70,39 @@ def test_a_box_corner_reports_its_sphere_patch_tangent_to_the_rounds():
     assert c["normal_jump_deg"] <= 1.0, c  # G1 with the three rounds
     # The mesh's own turn across the seams: no larger than a chord's turn inside a round at r / 100 (~16 deg).
     assert c["seam_turn_deg"] <= 16.0, c
+
+
+def test_a_box_corners_sphere_patch_is_an_occt_face_like_occts_fillet():
+    """The patch comes back as an exact face with the rounds' (res.surfaces, after the three rounds): on a
+    sphere of the ball's centre and radius, bounded by three arcs between the feet, each on a round's face --
+    the same face OCCT's fillet of the three edges makes at that corner (its spherical face: same centre,
+    radius and area)."""
+    box, edges = cases.box_corner()
+    r = 5.0
+    res = MeshRound.round_edges(cases.mesh_of(box, MaxLength=2.0), [e.valueAt(0.5 * (e.FirstParameter + e.LastParameter)) for e in edges], r)
+    rounds, patches = res.surfaces[:3], res.surfaces[3:]
+    assert [type(f.Surface) for f in rounds] == [Part.BSplineSurface] * 3
+    (patch,) = patches
+    assert isinstance(patch.Surface, Part.Sphere) and patch.isValid()
+    (occt,) = [f for f in box.makeFillet(r, edges).Faces if isinstance(f.Surface, Part.Sphere)]
+    assert (patch.Surface.Center - occt.Surface.Center).Length < 1e-9 * 100
+    assert patch.Surface.Radius == pytest.approx(occt.Surface.Radius, rel=1e-12)
+    assert patch.Area == pytest.approx(occt.Area, rel=1e-6)
+    assert len(patch.Edges) == 3
+    for edge in patch.Edges:  # each arc lies on one round's face: where the patch and that round join
+        middle = edge.valueAt(0.5 * (edge.FirstParameter + edge.LastParameter))
+        assert min(f.distToShape(Part.Vertex(middle))[0] for f in rounds) < 1e-4 * r
+
+
+def test_a_pyramids_apex_patch_is_a_four_sided_face():
+    """Four rounds at the apex meet in one ball: its patch has four arcs; every sphere corner gives a face."""
+    case = cases.case("pyramid")
+    res = MeshRound.round_edges(cases.mesh_of(case.solid, MaxLength=1.6), case.seeds, 5.0)
+    patches = [f for f in res.surfaces if isinstance(f.Surface, Part.Sphere)]
+    assert len(patches) == len([c for c in res.report["corners"] if c["kind"] == "sphere"]) == 5
+    assert sorted(len(f.Edges) for f in patches) == [3, 3, 3, 3, 4]
+    for f in patches:
+        assert f.isValid() and 0 < f.Area < 2 * math.pi * 5.0 ** 2
 
 
 def test_two_top_edges_report_the_crease_at_the_vertical_edge():

@@ -28,7 +28,8 @@ __all__ = ["RoundingError", "CancelToken", "RoundingResult", "round_edges", "rou
 @dataclasses.dataclass
 class RoundingResult:
     """What one rounding produced; `mesh` is new, the input mesh is never modified."""
-    surfaces: list      # Part.Face on a Part.BSplineSurface: the exact rolling-ball surface, per chain
+    surfaces: list      # Part.Face: the exact rolling-ball surface per chain (on a Part.BSplineSurface), then
+                        # each sphere corner's patch of the ball (on a Part.Sphere), bounded by the rounds' end arcs
     spines: list        # Part.Wire: the ball-centre path, per chain
     chains: list        # Part.Wire: the sharp-edge chains that were rounded
     contacts: list      # Part.Wire: the ball's contact lines, two per chain (side A, side B)
@@ -244,7 +245,7 @@ def _round(vertices, triangles, arguments, engine="round_edges", arrays=True):
     contacts = [side for pair in raw["contacts"] for side in pair]
     closed = list(raw["closed"])
     result = RoundingResult(
-        surfaces=shapes.faces_from_brep(raw["faces"]),
+        surfaces=shapes.faces_from_brep(list(raw["faces"]) + list(raw.get("corner_faces", []))),
         spines=shapes.polyline_wires(raw["spines"], closed),
         chains=shapes.polyline_wires(raw["chains"], closed),
         contacts=shapes.polyline_wires(contacts, [c for c in closed for _ in (0, 1)]),

@@ -68,6 +68,8 @@ struct CornerReport {
   double normal_jump_deg = 0; // largest angle between the exact normals of the surfaces meeting at a seam vertex:
                               // 0 where they join tangentially (G1: a sphere patch), a mitre's crease otherwise
   double seam_turn_deg = 0;   // largest turn between the two facets across a seam edge (the mesh's own view of it)
+  std::string brep;           // "sphere": the patch of the ball as an OCCT face (BRep text), bounded by the rounds'
+                              // end arcs, as exact as their faces (RoundedChain::brep); empty for the others
 };
 
 struct RoundReport {

@@ -39,6 +39,11 @@ void profile_arc(const ProfileStation& st, Vec3 poles[3], double weights[3]);
 // cubic through that kink would overshoot past the face where a contact barely moves).
 RoundingSurface loft_profiles(const std::vector<ProfileStation>& stations, bool closed, double period);
 
+// The patch of the ball (centre, radius) bounded by the great-circle arcs between consecutive `feet` (taken
+// in their order around the ball's axis `toward_corner`, from the centre towards the corner's vertex): a
+// sphere corner's face, as exact as the rounds' (sphere_corner.h). A null face when OCCT cannot make it.
+TopoDS_Face sphere_patch_face(const Vec3& centre, double radius, std::vector<Vec3> feet, const Vec3& toward_corner);
+
 // OCCT BRep text of a face (what FreeCAD's Part.Shape.importBrepFromString reads).
 std::string face_to_brep(const TopoDS_Face& face);
 
