@@ -76,7 +76,7 @@ def assert_like_occt(case, mesh):
 def test_a_whole_pocket_rounds_like_occt(draft, variant):
     """Rim, wall corners and floor: 12 edges in one call, against OCCT's fillet of the 12 edges, on meshes
     of elements 0.4 r and 2.5 r and the CAD mesh."""
-    case = cases.Case("pocket_all", cases.pocket_all(draft), R)
+    case = cases.Case(f"pocket_all_{draft:g}", cases.pocket_all(draft), R)  # (one name per solid: the reference is cached by it)
     assert len(case.chain) == 12
     res = assert_like_occt(case, case.mesh(variant))
     kinds = {}

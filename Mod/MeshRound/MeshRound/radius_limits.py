@@ -132,3 +132,17 @@ def check_rules(limits, radius, thickness=None, tool="die", k=None):
         rows.append(dict(chain=i, radius=r, tool=tools[i], min_radius=smallest, max_radius=largest, flags=flags,
                          message="; ".join(words)))
     return rows
+
+
+def rule_line(rows, tool):
+    """(text, flagged): one line for the task panel from check_rules' rows -- the flags and why, or that the
+    k.t rule is met; ("", False) when there is nothing to say."""
+    flagged = [row for row in rows if row["flags"]]
+    if flagged:
+        flags = sorted({flag for row in flagged for flag in row["flags"]})
+        messages = list(dict.fromkeys(row["message"] for row in flagged))
+        return f"{', '.join(FLAG_TEXT[f] for f in flags)}: {'; '.join(messages)}", True
+    if rows and rows[0]["min_radius"] is not None:
+        return f"r >= {max(row['min_radius'] for row in rows):g} mm ({tool}, {DEFAULT_K[tool]:g} t): met", False
+    return "", False
+

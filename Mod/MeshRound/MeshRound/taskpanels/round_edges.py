@@ -452,20 +452,9 @@ class RoundEdgesPanel:
             return []  # a radius of 0: the preview says why
 
     def _show_rules(self):
-        """The rule line beside the limit: the flags and why, in red; or that the k.t rule is met."""
-        rows = self.rule_check()
-        flagged = [row for row in rows if row["flags"]]
-        if flagged:
-            flags = sorted({flag for row in flagged for flag in row["flags"]})
-            messages = list(dict.fromkeys(row["message"] for row in flagged))
-            self.form.show_rules(f"{', '.join(radius_limits.FLAG_TEXT[f] for f in flags)}: {'; '.join(messages)}",
-                                 error=True)
-        elif rows and rows[0]["min_radius"] is not None:
-            smallest = max(row["min_radius"] for row in rows)
-            self.form.show_rules(f"r >= {smallest:g} mm ({self.form.tool_type()}, "
-                                 f"{radius_limits.DEFAULT_K[self.form.tool_type()]:g} t): met")
-        else:
-            self.form.show_rules("")
+        """The rule line beside the limit (radius_limits.rule_line: the flags and why in red, or that the k.t
+        rule is met), and what the automatic tolerance is for the radius."""
+        self.form.show_rules(*radius_limits.rule_line(self.rule_check(), self.form.tool_type()))
         largest = max((row[3] for row in self.law), default=0.0) if self.law else quantity_value(self.form.radius)
         self.form.show_automatic_tolerance(largest)
 
