@@ -51,10 +51,16 @@ struct OnRound {
   bool on_arc = false;
 };
 
-OnRound on_round(const RoundedChain& round, double radius, const Vec3& p) {
+// The ball's radius there is its own (the distance from its centre to its contacts, between the two
+// nearest balls): a round of one radius or of a law alike.
+OnRound on_round(const RoundedChain& round, const Vec3& p) {
   OnRound o;
   const auto where = nearest_on(round.spine, p);
   o.centre = at(round.spine, where);
+  const auto [i, t] = where;
+  const size_t j = std::min(i + 1, round.spine.size() - 1);
+  const double w = std::clamp(t, 0.0, 1.0);
+  const double radius = (1 - w) * (round.contacts[0][i] - round.spine[i]).norm() + w * (round.contacts[0][j] - round.spine[j]).norm();
   o.misfit = std::abs((p - o.centre).norm() - radius);
   const Vec3 a = at(round.contacts[0], where) - o.centre, b = at(round.contacts[1], where) - o.centre, d = p - o.centre;
   o.on_arc = angle_deg(a, d) + angle_deg(d, b) <= angle_deg(a, b) + kArcSlackDeg;
@@ -105,7 +111,7 @@ CornerReport mitre_report(const Points& V, const Triangles& F, const CornerEnd& 
   c.vertex = end.point, c.kind = "mitre", c.chains = {i, j}, c.radius = std::max(radii[i], radii[j]);
   const double r = c.radius, slack = kOnPlaneShare * std::max(r, end.point.cwiseAbs().maxCoeff() * 1e-2);
   auto on_both = [&](const Vec3& p, OnRound* oi, OnRound* oj) {
-    *oi = on_round(rounds[size_t(i)], radii[size_t(i)], p), *oj = on_round(rounds[size_t(j)], radii[size_t(j)], p);
+    *oi = on_round(rounds[size_t(i)], p), *oj = on_round(rounds[size_t(j)], p);
     return oi->on_arc && oj->on_arc && oi->misfit <= kOnSurfaceShare * radii[size_t(i)] && oj->misfit <= kOnSurfaceShare * radii[size_t(j)];
   };
   auto on_seam = [&](const Vec3& p) {
@@ -118,7 +124,7 @@ CornerReport mitre_report(const Points& V, const Triangles& F, const CornerEnd& 
     return std::pair<Vec3, Vec3>{p - oi.centre, p - oj.centre};
   };
   auto misfit = [&](const Vec3& p) {
-    return std::max(on_round(rounds[size_t(i)], radii[size_t(i)], p).misfit, on_round(rounds[size_t(j)], radii[size_t(j)], p).misfit);
+    return std::max(on_round(rounds[size_t(i)], p).misfit, on_round(rounds[size_t(j)], p).misfit);
   };
   measure_seams(V, F, on_seam, exact, misfit, c);
   return c;
@@ -143,12 +149,12 @@ CornerReport sphere_report(const Points& V, const Triangles& F, const SphereCorn
   auto on_seam = [&](const Vec3& p) { return in_patch(p) && plane_of(p) >= 0; };
   auto exact = [&](const Vec3& p) {
     const int k = ids[size_t(plane_of(p))];
-    return std::pair<Vec3, Vec3>{p - ball.centre, p - on_round(rounds[size_t(k)], r, p).centre};
+    return std::pair<Vec3, Vec3>{p - ball.centre, p - on_round(rounds[size_t(k)], p).centre};
   };
   auto misfit = [&](const Vec3& p) {
     const int m = plane_of(p);
     const double to_ball = std::abs((p - ball.centre).norm() - r);
-    return m < 0 ? to_ball : std::max(to_ball, on_round(rounds[size_t(ids[size_t(m)])], r, p).misfit);
+    return m < 0 ? to_ball : std::max(to_ball, on_round(rounds[size_t(ids[size_t(m)])], p).misfit);
   };
   measure_seams(V, F, on_seam, exact, misfit, c);
   // The patch's own facets: their vertices and centroids against the ball.
@@ -189,10 +195,12 @@ std::vector<CornerReport> report_corners(const Points& V, const Triangles& F, co
 }
 
 CornerReport report_rolled_corner(const Points& V, const Triangles& F, const RolledCorner& corner, const RoundedChain& odd,
-                                  const RoundedChain& rolled, double radius, int odd_index, int rolled_index) {
+                                  const RoundedChain& rolled, double odd_radius, int odd_index, int rolled_index) {
   CornerReport c;
-  c.vertex = corner.vertex, c.kind = "rolled", c.chains = {odd_index, rolled_index}, c.radius = radius;
-  const double r = radius, s = corner.odd_convex ? 1 : -1;
+  c.vertex = corner.vertex, c.kind = "rolled", c.chains = {odd_index, rolled_index}, c.radius = odd_radius;
+  const double r = odd_radius, s = corner.odd_convex ? 1 : -1;
+  double near = 4 * r;  // the neighbourhood: 4 x the larger of the two rounds' radii
+  for (size_t i = 0; i < rolled.spine.size(); ++i) near = std::max(near, 4 * (rolled.spine[i] - rolled.contacts[0][i]).norm());
   // The rolled round's balls near the vertex that lean on the odd round (their contact on it): the angle
   // between the two outward normals at the contact -- the balls touch from either side of the surface,
   // one in the solid and one outside, so those are s (p - odd centre) and s (rolled centre - p), s = +1
@@ -201,8 +209,8 @@ CornerReport report_rolled_corner(const Points& V, const Triangles& F, const Rol
   for (size_t i = 0; i < rolled.spine.size(); ++i)
     for (int k = 0; k < 2; ++k) {
       const Vec3 p = rolled.contacts[k][i];
-      if ((p - corner.vertex).norm() > 4 * r) continue;
-      const OnRound o = on_round(odd, r, p);
+      if ((p - corner.vertex).norm() > near) continue;
+      const OnRound o = on_round(odd, p);
       if (!o.on_arc || o.misfit > kOnSurfaceShare * r) continue;
       side = k;
       c.normal_jump_deg = std::max(c.normal_jump_deg, angle_deg(s * (p - o.centre), s * (rolled.spine[i] - p)));
@@ -211,11 +219,11 @@ CornerReport report_rolled_corner(const Points& V, const Triangles& F, const Rol
   // The mesh's seam: its vertices on the odd round along that contact line, their distance (and the seam
   // edges' middles') from the odd round's exact surface, and the turn across the seam edges.
   std::vector<char> seam(size_t(V.rows()), 0);
-  auto misfit = [&](const Vec3& p) { return on_round(odd, r, p).misfit; };
+  auto misfit = [&](const Vec3& p) { return on_round(odd, p).misfit; };
   for (Eigen::Index v = 0; v < V.rows(); ++v) {
     const Vec3 p = V.row(v);
-    if ((p - corner.vertex).norm() > 4 * r) continue;
-    const OnRound o = on_round(odd, r, p);
+    if ((p - corner.vertex).norm() > near) continue;
+    const OnRound o = on_round(odd, p);
     if (o.on_arc && o.misfit <= kOnSurfaceShare * r && (at(rolled.contacts[side], nearest_on(rolled.contacts[side], p)) - p).norm() <= kOnSurfaceShare * r)
       seam[size_t(v)] = 1, ++c.seam_vertices, c.deviation = std::max(c.deviation, o.misfit);
   }

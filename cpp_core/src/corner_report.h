@@ -18,9 +18,9 @@ std::vector<CornerReport> report_corners(const Points& V, const Triangles& F, co
                                          const std::vector<RoundedChain>& rounds, const std::vector<double>& radii);
 
 // A rolled corner (network.h): the seam where the rolled round leans on the odd one, within 4 r of the
-// vertex, measured against both rounds (the odd one made first, `odd_index` / `rolled_index` in the
-// call's rounds).
+// vertex (r the larger of the two rounds' radii there), measured against both rounds (the odd one made
+// first, of radius `odd_radius`; `odd_index` / `rolled_index` in the call's rounds).
 CornerReport report_rolled_corner(const Points& V, const Triangles& F, const RolledCorner& corner, const RoundedChain& odd,
-                                  const RoundedChain& rolled, double radius, int odd_index, int rolled_index);
+                                  const RoundedChain& rolled, double odd_radius, int odd_index, int rolled_index);
 
 }  // namespace meshround

@@ -8,6 +8,7 @@
 #include <string>
 
 #include "call_checks.h"
+#include "meshround/radius_law.h"
 
 namespace meshround {
 
@@ -22,6 +23,11 @@ namespace {
 // At a corner of four or more rounds, the largest distance a face may have from the one ball meant to
 // touch them all, as a share of the tolerance (three faces always have such a ball).
 constexpr double kCornerBallMissShare = 0.1;
+// Rounds meeting at a corner have one radius there when their radii there differ by no more than this
+// share of the tolerance.
+constexpr double kSameCornerRadiusShare = 1e-3;
+// A radius law into a corner holds its value over this many radii before the corner (its end's setback).
+constexpr double kCornerLawHoldRadii = 2.0;
 
 // +1 where chain c's edge at its end vertex v is convex (the solid's angle there is under 180 degrees),
 // -1 where it is concave, 0 where that edge has not two facets; n: the two facets' normals.
@@ -35,11 +41,54 @@ int convexity_at(const MeshTopology& input, const SharpChain& c, int v, Vec3 n[2
   return (input.corner(sides[0], third) - input.point(v)).dot(n[1]) < 0 ? 1 : -1;
 }
 
+// The radius chain c's round has where it ends at vertex v: its own law's value there (options_per_chain),
+// or the call's one radius. A round is cut at a corner by carrying its ball at the end's setback (up to
+// about 2 r before the vertex: ends.h) on to the corner's plane, so a law must hold its value over that
+// stretch: *changing is set when it does not.
+double radius_at_end(const RoundOptions& own, const SharpChain& c, int v, bool* changing) {
+  *changing = false;
+  if (own.radius_law.empty()) return own.radius;
+  const RadiusLaw law(own, c, own.reach * own.max_radius());
+  const bool at_start = c.vertices.front() == v;
+  const double end = at_start ? 0.0 : c.length, r = law.at(end);
+  const double span = std::min(c.length, kCornerLawHoldRadii * law.max_radius());
+  for (int i = 1; i <= 8; ++i)
+    if (std::abs(law.at(at_start ? span * i / 8 : c.length - span * i / 8) - r) > kSameCornerRadiusShare * own.effective_tolerance()) *changing = true;
+  return r;
+}
+
+// One radius along the whole chain: no law, or a law whose control points all give the same radius.
+bool constant_radius(const RoundOptions& own) {
+  return std::all_of(own.radius_law.begin(), own.radius_law.end(), [&](const RadiusControl& c) { return c.radius == own.radius_law[0].radius; });
+}
+
+// Rounds that meet at a corner (mitre or sphere) meet in one curve only when they have one radius there:
+// the radius they share at vertex v (chains `ids`, each with its own options), or a refusal naming the
+// vertex and the radii. Laws are welcome as long as they agree at the corner.
+double shared_corner_radius(const MeshTopology& input, const std::vector<SharpChain>& chains, const std::vector<RoundOptions>& own,
+                            const std::vector<size_t>& ids, int v, const std::vector<Vec3>& picked) {
+  std::vector<double> r;
+  for (size_t id : ids) {
+    bool changing = false;
+    r.push_back(radius_at_end(own[id], chains[id], v, &changing));
+    if (changing)
+      throw RoundingError(ErrorCode::CornerNotBlendable, "the radius of the chain picked at " + format_point(picked[id]) + " still changes within " +
+                          format_number(kCornerLawHoldRadii) + " r of the corner at " + format_point(input.point(v)) +
+                          ": a radius law into a corner must hold its value over that stretch (put its last control point there)");
+  }
+  const auto [lo, hi] = std::minmax_element(r.begin(), r.end());
+  if (*hi - *lo > kSameCornerRadiusShare * own[ids[0]].effective_tolerance())
+    throw RoundingError(ErrorCode::CornerNotBlendable, "the chains picked at and around " + format_point(picked[ids[0]]) + " meet at " +
+                        format_point(input.point(v)) + " with radii " + format_number(*lo) + " and " + format_number(*hi) +
+                        " there: rounds of different radii meeting at a corner are not blended yet (give them one radius at that corner)");
+  return *hi;
+}
+
 // Three or more picked chains ending at vertex v (chains `ids`): their faces there (each chain's two
 // sides, paired up: as many faces as chains, around the vertex), the convexity all of them share, and
-// the ball touching all the faces -- for four or more, only where their offsets meet in one point.
+// the ball of `radius` touching all the faces -- for four or more, only where their offsets meet in one point.
 SphereCorner ball_corner(const MeshTopology& input, const std::vector<SharpChain>& chains, const std::vector<size_t>& ids,
-                         int v, const RoundOptions& opt, const Vec3& picked) {
+                         int v, double radius, const RoundOptions& opt, const Vec3& picked) {
   SphereCorner corner;
   corner.vertex = input.point(v);
   const size_t n = ids.size();
@@ -47,8 +96,7 @@ SphereCorner ball_corner(const MeshTopology& input, const std::vector<SharpChain
     throw RoundingError(ErrorCode::CornerNotBlendable, "the " + std::to_string(n) + " chains picked at and around " + format_point(picked) +
                         " meet at " + format_point(corner.vertex) + ": " + why);
   };
-  if (!opt.radius_law.empty()) refuse("variable radii into a corner are not blended yet");
-  corner.radius = opt.radius;
+  corner.radius = radius;
   std::vector<Vec3> normals;  // the faces at the vertex, one normal each
   const double same = std::cos(opt.feature_angle_deg * M_PI / 180);
   int convex = 0;
@@ -120,9 +168,10 @@ std::vector<int> plan_stages(const MeshTopology& input, const std::vector<SharpC
         RolledCorner c;
         c.vertex = input.point(v), c.odd = ids[size_t(odd)], c.odd_convex = sign[odd] > 0;
         c.pair = {ids[size_t((odd + 1) % 3)], ids[size_t((odd + 2) % 3)]};
-        if (!opt.radius_law.empty())
-          throw RoundingError(ErrorCode::CornerNotBlendable, "the chains picked at and around " + format_point(picked[c.odd]) + " meet at " +
-                              format_point(c.vertex) + ": variable radii into a corner are not blended yet");
+        if (!opt.radius_law.empty() && !constant_radius(options_per_chain(opt, chains, picked)[c.odd]))
+          throw RoundingError(ErrorCode::CornerNotBlendable, "the chain picked at " + format_point(picked[c.odd]) + " meets the others at " +
+                              format_point(c.vertex) + ", where it is rounded first and they roll on around its end: a variable radius "
+                              "along it is not blended there yet (give it one radius; theirs may vary)");
         ask(c.odd, 0, c.vertex), ask(c.pair[0], 1, c.vertex), ask(c.pair[1], 1, c.vertex);
         rolled->push_back(c);
         continue;
@@ -155,11 +204,13 @@ std::vector<int> plan_stages(const MeshTopology& input, const std::vector<SharpC
 // and faces match there; otherwise the second round's rows find no vertex of the first's to share and
 // the call is refused, naming the corner). Where three or more end at a vertex, with one convexity, they
 // meet in the ball touching all their faces (sphere_corner.h; four or more only where the faces' offsets
-// meet in one point). A chain running on through another's end, variable radii into a corner, and four
-// faces with no common ball are refused, naming the vertex.
+// meet in one point). Each chain may have a radius of its own or a law (its control points, options_per_chain)
+// as long as the rounds meeting at a corner have one radius there. A chain running on through another's
+// end, different radii at one corner, and four faces with no common ball are refused, naming the vertex.
 std::vector<NetworkPart> find_corners(const MeshTopology& input, const std::vector<SharpChain>& chains, const std::vector<Vec3>& picked,
                                       const RoundOptions& opt, std::vector<std::pair<SphereCorner, size_t>>* spheres) {
   std::vector<NetworkPart> out(chains.size());
+  const std::vector<RoundOptions> own = options_per_chain(opt, chains, picked);
   auto into = [](const SharpChain& c, bool at_start) {
     const size_t n = c.points.size();
     return at_start ? Vec3((c.points[1] - c.points[0]).normalized()) : Vec3((c.points[n - 2] - c.points[n - 1]).normalized());
@@ -181,7 +232,7 @@ std::vector<NetworkPart> find_corners(const MeshTopology& input, const std::vect
       if (others.size() >= 2) {
         std::vector<size_t> ids{k};
         for (const auto& o : others) ids.push_back(o.first);
-        const SphereCorner corner = ball_corner(input, chains, ids, v, opt, picked[k]);
+        const SphereCorner corner = ball_corner(input, chains, ids, v, shared_corner_radius(input, chains, own, ids, v, picked), opt, picked[k]);
         if (std::none_of(spheres->begin(), spheres->end(), [&](const auto& c) { return c.first.vertex == corner.vertex; }))
           spheres->push_back({corner, k});
         CornerEnd end{input.point(v), into(chains[k], at_start), false};
@@ -189,9 +240,7 @@ std::vector<NetworkPart> find_corners(const MeshTopology& input, const std::vect
         out[k].corners.push_back(end);
         continue;
       }
-      if (!opt.radius_law.empty())
-        throw RoundingError(ErrorCode::CornerNotBlendable, "the chains picked at " + format_point(picked[k]) + " and " + format_point(picked[others[0].first]) +
-                            " meet at " + format_point(input.point(v)) + ": variable radii into a corner are not blended yet");
+      shared_corner_radius(input, chains, own, {k, others[0].first}, v, picked);
       const Vec3 d = into(chains[k], at_start) - into(chains[others[0].first], others[0].second);
       out[k].corners.push_back({input.point(v), d.normalized(), others[0].first < k});
     }
@@ -199,22 +248,22 @@ std::vector<NetworkPart> find_corners(const MeshTopology& input, const std::vect
   return out;
 }
 
-// Each chain's options: a radius law keeps the control points nearest to that chain (each point belongs
-// to one chain); a chain without a control point is an error, as is a point far from every chain.
+// Each chain's options: a radius law keeps the control points nearest to that chain (a point at a corner,
+// as near to several chains, belongs to each of them); a chain without a control point is an error, as is
+// a point far from every chain.
 std::vector<RoundOptions> options_per_chain(const RoundOptions& opt, const std::vector<SharpChain>& chains,
                                             const std::vector<Vec3>& picked) {
   std::vector<RoundOptions> out(chains.size(), opt);
   if (opt.radius_law.empty() || chains.size() < 2) return out;
   for (RoundOptions& o : out) o.radius_law.clear(), o.tolerance = opt.effective_tolerance();  // one for all
   for (const RadiusControl& c : opt.radius_law) {
-    size_t best = 0;
-    double best_d = INFINITY;
-    for (size_t k = 0; k < chains.size(); ++k) {
-      double d;
-      chains[k].project(c.point, &d);
-      if (d < best_d) best_d = d, best = k;
-    }
-    out[best].radius_law.push_back(c);  // RadiusLaw reports a point too far from its chain
+    std::vector<double> d(chains.size());
+    for (size_t k = 0; k < chains.size(); ++k) chains[k].project(c.point, &d[k]);
+    const double best_d = *std::min_element(d.begin(), d.end());
+    // A point at a corner (as near to several chains) gives each of them its radius there.
+    const double tie = 1e-9 * std::max(1.0, c.point.cwiseAbs().maxCoeff());
+    for (size_t k = 0; k < chains.size(); ++k)
+      if (d[k] <= best_d + tie) out[k].radius_law.push_back(c);  // RadiusLaw reports a point too far from its chain
   }
   for (size_t k = 0; k < chains.size(); ++k)
     if (out[k].radius_law.empty())

@@ -48,7 +48,8 @@ struct RolledCorner {
 // Each chain's stage: 0 made first, 1 made on stage 0's result (RolledCorner, one entry per such vertex
 // into `rolled`). Chains meeting at a mitre or a sphere corner share a stage. Refuses
 // (corner_not_blendable, naming the vertices) a chain that would have to be made both before and after
-// its neighbours, and variable radii into a rolled corner.
+// its neighbours, and a variable radius along the chain made first at a rolled corner (each chain may
+// have its own radius: the one made first is carried into the second stage as an exact round of it).
 std::vector<int> plan_stages(const MeshTopology& input, const std::vector<SharpChain>& chains, const std::vector<Vec3>& picked,
                              const RoundOptions& opt, std::vector<RolledCorner>* rolled);
 
@@ -70,8 +71,9 @@ PickedChains pick_chains(const MeshTopology& input, const std::vector<Vec3>& see
 // find_corners on the chains made first), into `plan` (round.h); a corner refusal is kept in the plan.
 void plan_corners(const MeshTopology& input, const PickedChains& picked, const RoundOptions& opt, NetworkPlan& plan);
 
-// Each chain's options: a radius law keeps the control points nearest to that chain (each point belongs
-// to one chain); a chain without a control point is an error, as is a point far from every chain.
+// Each chain's options: a radius law keeps the control points nearest to that chain (a point at a corner,
+// as near to several chains, belongs to each of them); a chain without a control point is an error, as is
+// a point far from every chain.
 std::vector<RoundOptions> options_per_chain(const RoundOptions& opt, const std::vector<SharpChain>& chains,
                                             const std::vector<Vec3>& picked);
 

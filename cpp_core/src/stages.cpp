@@ -46,14 +46,31 @@ RoundResult round_in_stages(const Points& V, const Triangles& F, const std::vect
     if (stage[k] == 0) index_in_first[k] = int(picks[0].size());
     picks[stage[k]].push_back(seeds[k]);
   }
-  RoundOptions with_arrays = opt;
-  with_arrays.write_arrays = true;  // the second stage starts from the first's mesh
-  const RoundResult a = round_edges(V, F, picks[0], with_arrays);
+  // Each stage takes its own chains' radius control points (a chain of the second stage is traced anew,
+  // and takes the points of the input chains it runs along); one tolerance for both.
+  const std::vector<RoundOptions> own = options_per_chain(opt, chains, seeds);
+  RoundOptions stage_opt[2] = {opt, opt};
+  for (int s : {0, 1}) {
+    stage_opt[s].write_arrays = true;  // the second stage starts from the first's mesh
+    if (opt.radius_law.empty()) continue;
+    stage_opt[s].radius_law.clear();
+    stage_opt[s].tolerance = opt.effective_tolerance();
+    for (size_t k = 0; k < chains.size(); ++k)
+      if (stage[k] == s) stage_opt[s].radius_law.insert(stage_opt[s].radius_law.end(), own[k].radius_law.begin(), own[k].radius_law.end());
+  }
+  auto radius_of = [&](size_t k) { return own[k].radius_law.empty() ? own[k].radius : own[k].radius_law[0].radius; };
+  auto constant = [&](size_t k) {
+    return std::all_of(own[k].radius_law.begin(), own[k].radius_law.end(), [&](const RadiusControl& c) { return c.radius == radius_of(k); });
+  };
+  const RoundResult a = round_edges(V, F, picks[0], stage_opt[0]);
+  // The first stage's rounds, exact, for the second to roll on (a chain made first at a rolled corner has one
+  // radius: plan_stages).
   std::vector<ExactRound> earlier;
-  for (const RoundedChain& c : a.chains) earlier.push_back({c.spine, opt.max_radius()});  // (one constant radius: plan_stages)
+  for (size_t k = 0; k < chains.size(); ++k)
+    if (index_in_first[k] >= 0 && constant(k)) earlier.push_back({a.chains[size_t(index_in_first[k])].spine, radius_of(k)});
   RoundResult b;
   try {
-    b = round_edges_after(a.vertices, a.triangles, picks[1], with_arrays, earlier);
+    b = round_edges_after(a.vertices, a.triangles, picks[1], stage_opt[1], earlier);
   } catch (const RoundingError& e) {
     throw on_own_mesh(e, MeshTopology(V, F), picks[1].front(), opt);
   }
@@ -82,7 +99,7 @@ RoundResult round_in_stages(const Points& V, const Triangles& F, const std::vect
     const int odd = index_in_first[c.odd], round = nearest_round(out.chains, size_t(offset), c.vertex);
     if (odd >= 0 && round >= 0)
       out.report.corners.push_back(report_rolled_corner(out.vertices, out.triangles, c, out.chains[size_t(odd)], out.chains[size_t(round)],
-                                                        opt.max_radius(), odd, round));
+                                                        radius_of(c.odd), odd, round));
   }
   if (!opt.write_arrays) out.vertices.resize(0, 3), out.triangles.resize(0, 3);
   return out;

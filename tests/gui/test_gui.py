@@ -68,9 +68,9 @@ def test_the_panel_names_and_marks_the_corners_where_picked_chains_meet(observed
     picked = observed["corners_with_side_edge"]
     assert picked["text"] == "2 corner(s): 2 mitre" and "c00000" not in picked["style"]
     assert sorted(p for p, _ in picked["marks"]) == [[100.0, 0.0, 40.0], [100.0, 60.0, 40.0]]
-    # a radius law into the mitres: the panel says which corner round_edges would refuse, in red
+    # radii of their own that differ at the mitres (3 and 4): the panel says which corner round_edges would refuse, in red
     with_law = observed["corners_with_a_law"]
-    assert with_law["text"].startswith("Corner not blended:") and "variable radii into a corner" in with_law["text"]
+    assert with_law["text"].startswith("Corner not blended:") and "with radii 3 and 4 there" in with_law["text"]
     assert "c00000" in with_law["style"]
     assert observed["corners_after_remove"] == {"text": "", "chains": 2}
 

@@ -339,11 +339,17 @@ class Case:
     for a law, OCCT's own radius measured along the chain, or with controls="ends" just the law's first
     and last radius at the chain's ends (a start -> end law, as a user gives it)."""
 
-    def __init__(self, name, builder, radius, law=None, controls="measured"):
+    def __init__(self, name, builder, radius, law=None, controls="measured", edge_radius=None):
         self.name = name
         self.builder = builder
         self.solid, self.chain = builder()
         self.law = law
+        # edge_radius(edge) -> r, or (r at the edge's first parameter, r at its last): each edge's own radius
+        # (a network: MeshRound gets a control point at each edge's middle, or at its two ends for a law;
+        # OCCT each edge's radius or start -> end law).
+        self.edge_radius = None if edge_radius is None else (lambda e: _pair(edge_radius(e)))
+        if edge_radius is not None:
+            radius = max(max(self.edge_radius(e)) for e in self.chain)
         self.r_max = radius if law is None else max(r for _, r in law)
         self.tolerance = self.r_max / 100
         try:
@@ -355,7 +361,13 @@ class Case:
         self.closed = not self.network and is_closed(self.chain)
         self.reference = self._occt_fillet(radius)
         self.rounds = fillet_faces(self.reference, self.solid)
-        if law is None:
+        if edge_radius is not None:
+            self.radius = []
+            for e in self.chain:
+                r0, r1 = self.edge_radius(e)
+                self.radius += ([(e.valueAt(0.5 * (e.FirstParameter + e.LastParameter)), r0)] if r0 == r1 else
+                                [(e.valueAt(e.FirstParameter), r0), (e.valueAt(e.LastParameter), r1)])
+        elif law is None:
             self.radius = radius
         elif controls == "ends":
             self.radius = [(V(*self.points[0]), law[0][1]), (V(*self.points[-1]), law[-1][1])]
@@ -392,6 +404,8 @@ class Case:
     def _occt_fillet(self, radius):
         if getattr(self.builder, "offset_reference", False):  # every edge of a convex solid, one radius
             return self.solid.makeOffsetShape(-radius, 1e-7, join=0).makeOffsetShape(radius, 1e-7, join=0)
+        if self.edge_radius is not None:
+            return part_fillet_feature(self.solid, [(self._index(e), *self.edge_radius(e)) for e in self.chain])
         if self.law is None:
             return self.solid.makeFillet(radius, self.chain)
         return part_fillet_feature(self.solid, self._edge_stations())
@@ -434,6 +448,10 @@ class Case:
 
     def __repr__(self):
         return f"Case({self.name})"
+
+
+def _pair(r):
+    return (float(r), float(r)) if np.isscalar(r) else (float(r[0]), float(r[1]))
 
 
 def part_fillet_feature(solid, stations):

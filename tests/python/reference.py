@@ -327,17 +327,42 @@ def input_tessellation_error(case, V0, F0, geo):
     return float(max(there, back))
 
 
-def accuracy(case, geo, V0, F0, V1, F1, made, reach):
-    """Deviations relative to r: made facets -> exact filleted solid (kept facets are the input's own, see
-    input_error), points on the exact rounds -> the result near the chain, and the input's own error.
-    A deviation over 0.1 (ten tolerances) is only bounded: it lies between 0.1 and the figure given."""
+def deviation_samples(case, geo, V1, F1, made, reach):
+    """Both ways, relative to r: (points on the made facets, their distance to the exact filleted solid),
+    (points on the exact rounds, their distance to the result near the chain). A distance over 0.1 (ten
+    tolerances) is only bounded: it lies between 0.1 and the figure given."""
     r, chain = case.r_max, geo["chain"]
     P = surface_samples(V1, F1[made])
     P = P[chain.distance(P) <= (reach + 1) * r]  # made facets beyond: see far_facets_added
     band = F1[chain.facet_distance(V1, F1, (reach + 1) * r) <= (reach + 1) * r]
-    return dict(dev_out_to_ref=float(geo["filleted"].distance(P, cap=0.1 * r).max(initial=0) / r),
-                dev_ref_to_out=float(TriangleSet(V1, band, 0.2 * r).distance(geo["rounds"], cap=0.1 * r).max() / r),
-                input_error=input_tessellation_error(case, V0, F0, geo) / r)
+    return ((P, geo["filleted"].distance(P, cap=0.1 * r) / r),
+            (geo["rounds"], TriangleSet(V1, band, 0.2 * r).distance(geo["rounds"], cap=0.1 * r) / r))
+
+
+def accuracy(case, geo, V0, F0, V1, F1, made, reach):
+    """Deviations relative to r: made facets -> exact filleted solid (kept facets are the input's own, see
+    input_error), points on the exact rounds -> the result near the chain, and the input's own error."""
+    (_, out_to_ref), (_, ref_to_out) = deviation_samples(case, geo, V1, F1, made, reach)
+    return dict(dev_out_to_ref=float(out_to_ref.max(initial=0)), dev_ref_to_out=float(ref_to_out.max(initial=0)),
+                input_error=input_tessellation_error(case, V0, F0, geo) / case.r_max)
+
+
+def corner_deviations(case, inp, out, reach=3.0):
+    """The deviations both ways (relative to r), split at 1 r from the network's corner vertices (the ends
+    of the picked edges): {"far": (out->ref, ref->out), "near": (...)}, where the issue's bounds differ
+    (the tolerance beyond 1 r of every corner; 3 tolerances from OCCT's own corner construction within)."""
+    geo = exact_geometry(case, reach)
+    V0, F0 = mesh_arrays(inp)
+    V1, F1 = mesh_arrays(out)
+    id0, id1 = common_vertex_ids(V0, V1)
+    made = ~np.isin(as_rows(cyclic_keys(id1[F1])), as_rows(cyclic_keys(id0[F0])))
+    corners = np.array([[v.Point.x, v.Point.y, v.Point.z] for e in case.chain for v in e.Vertexes])
+    res = {"far": [], "near": []}
+    for P, d in deviation_samples(case, geo, V1, F1, made, reach):
+        near = np.min(np.linalg.norm(P[:, None, :] - corners[None, :, :], axis=2), axis=1) <= case.r_max
+        res["far"].append(float(d[~near].max(initial=0)))
+        res["near"].append(float(d[near].max(initial=0)))
+    return {k: tuple(v) for k, v in res.items()}
 
 
 def topology(case, out, V0, F0, V1, F1, t0, t1):

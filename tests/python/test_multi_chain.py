@@ -109,10 +109,11 @@ def test_three_rounds_at_a_corner_meet_in_the_corner_ball(box, element, r):
     assert not np.any(np.all(pts > centre + f32, axis=1) & (np.linalg.norm(pts - centre, axis=1) > r + f32))
 
 
-def test_a_radius_law_into_a_three_round_corner_is_refused_naming_it(box):
+def test_a_radius_law_still_changing_into_a_three_round_corner_is_refused_naming_it(box):
+    """(A law that agrees at the corner and holds its value there rounds: test_mixed_radii.py.)"""
     seeds = [BOX_SEED, V(X, Y / 2, Z), V(X, Y, Z / 2)]
     law = [(V(0, Y, Z), 3.0), (V(X, Y, Z), 4.0), (V(X, 0, Z), 3.0), (V(X, Y, 0), 3.0)]
-    with pytest.raises(MeshRound.RoundingError, match=r"meet at \(100, 60, 40\)") as refused:
+    with pytest.raises(MeshRound.RoundingError, match=r"still changes within 2 r of the corner at \(100, 60, 40\)") as refused:
         MeshRound.round_edges(box, seeds, law)
     assert refused.value.code == "corner_not_blendable"
 
