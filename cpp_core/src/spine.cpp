@@ -22,6 +22,9 @@ namespace {
 // of a round made to r / 100 sags r / 100 at most). A flat face's facet beside the round passes only
 // where it is tangent to it, which is where the two agree.
 constexpr double kOnRoundShare = 0.01, kChordShare = 0.02;
+// p's foot on a round lies over a facet of it when the facet's chord is within this share of r of the foot
+// (the chord's sag, kChordShare, with room for the foot's drift along the chord's curve).
+constexpr double kFootOverShare = 2 * kChordShare;
 
 // The point of a polyline nearest p (clamped to its ends).
 Vec3 nearest_on_polyline(const std::vector<Vec3>& line, const Vec3& p) {
@@ -41,30 +44,50 @@ double off_round(const ExactRound& round, const Vec3& p) { return (p - nearest_o
 
 BaseDistance::BaseDistance(const MeshTopology& mesh, const std::vector<int>& facets, const std::vector<ExactRound>* rounds)
     : mesh_(mesh), facets_(facets), rounds_(rounds && !rounds->empty() ? rounds : nullptr) {
-  std::vector<Vec3> boxes;
-  boxes.reserve(2 * facets.size());
-  for (const int f : facets) {
-    const Vec3 a = mesh.corner(f, 0), b = mesh.corner(f, 1), c = mesh.corner(f, 2);
-    boxes.push_back(a.cwiseMin(b).cwiseMin(c)), boxes.push_back(a.cwiseMax(b).cwiseMax(c));
-  }
-  tree_ = std::make_shared<const BoxTree>(boxes);
-  if (!rounds_) return;
-  on_round_.assign(facets.size(), -1);
-  for (size_t i = 0; i < facets.size(); ++i) {
-    const Vec3 a = mesh.corner(facets[i], 0), b = mesh.corner(facets[i], 1), c = mesh.corner(facets[i], 2);
-    for (size_t k = 0; k < rounds_->size() && on_round_[i] < 0; ++k) {
-      const ExactRound& round = (*rounds_)[k];
-      const double r = round.radius;
-      if (std::abs(off_round(round, a)) <= kOnRoundShare * r && std::abs(off_round(round, b)) <= kOnRoundShare * r &&
-          std::abs(off_round(round, c)) <= kOnRoundShare * r && std::abs(off_round(round, (a + b + c) / 3)) <= kChordShare * r)
-        on_round_[i] = int(k);
+  if (rounds_) {
+    on_round_.assign(facets.size(), -1);
+    for (size_t i = 0; i < facets.size(); ++i) {
+      const Vec3 a = mesh.corner(facets[i], 0), b = mesh.corner(facets[i], 1), c = mesh.corner(facets[i], 2);
+      for (size_t k = 0; k < rounds_->size() && on_round_[i] < 0; ++k) {
+        const ExactRound& round = (*rounds_)[k];
+        const double r = round.radius;
+        if (std::abs(off_round(round, a)) <= kOnRoundShare * r && std::abs(off_round(round, b)) <= kOnRoundShare * r &&
+            std::abs(off_round(round, c)) <= kOnRoundShare * r && std::abs(off_round(round, (a + b + c) / 3)) <= kChordShare * r)
+          on_round_[i] = int(k);
+      }
     }
   }
+  std::vector<Vec3> boxes;
+  boxes.reserve(2 * facets.size());
+  for (size_t i = 0; i < facets.size(); ++i) {
+    const int f = facets[i];
+    const Vec3 a = mesh.corner(f, 0), b = mesh.corner(f, 1), c = mesh.corner(f, 2);
+    // A facet on a round is measured on the exact surface over it, up to a chord's sag off its box.
+    const double sag = rounds_ && on_round_[i] >= 0 ? kFootOverShare * (*rounds_)[size_t(on_round_[i])].radius : 0.0;
+    boxes.push_back(a.cwiseMin(b).cwiseMin(c).array() - sag), boxes.push_back(a.cwiseMax(b).cwiseMax(c).array() + sag);
+  }
+  tree_ = std::make_shared<const BoxTree>(boxes);
+}
+
+bool BaseDistance::exact_foot(int i, const Vec3& p, Vec3* foot) const {
+  if (!rounds_ || on_round_[size_t(i)] < 0) return false;
+  const ExactRound& round = (*rounds_)[size_t(on_round_[size_t(i)])];
+  const Vec3 centre = nearest_on_polyline(round.spine, p), d = p - centre;
+  if (d.norm() <= 1e-9 * round.radius) return false;
+  *foot = centre + round.radius * d.normalized();
+  const int f = facets_[size_t(i)];
+  const Vec3 on_chord = closest_point_on_triangle(*foot, mesh_.corner(f, 0), mesh_.corner(f, 1), mesh_.corner(f, 2), nullptr);
+  return (on_chord - *foot).norm() <= kFootOverShare * round.radius;
 }
 
 Vec3 BaseDistance::closest(const Vec3& p, int* facet, int* region) const {
+  // A facet on an earlier round competes with the distance to the round's exact surface where p's foot on
+  // it lies over the facet: near the line where the round meets a flat face, the ball then touches
+  // whichever of the two is nearer, tangentially, not the kink between the round's chords and the face.
   auto d2 = [&](int i) {
-    const int f = facets_[i];
+    Vec3 foot;
+    if (exact_foot(i, p, &foot)) return (foot - p).squaredNorm();
+    const int f = facets_[size_t(i)];
     return (closest_point_on_triangle(p, mesh_.corner(f, 0), mesh_.corner(f, 1), mesh_.corner(f, 2), nullptr) - p).squaredNorm();
   };
   const int i = tree_->nearest(p, d2);

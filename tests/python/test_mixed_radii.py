@@ -65,6 +65,7 @@ def test_a_rim_rolls_on_around_wall_corners_of_another_radius(draft, r_wall, r_r
     for c in rolled:  # measured against the wall corner's own round (its radius), within its tolerance
         assert c["radius"] == r_wall
         assert c["seam_vertices"] >= 5 and c["deviation"] <= max(r_wall, r_rim) / 100, c
+        assert c["normal_jump_deg"] <= 1.0, c  # G1: the rim's balls touch the wall corner's exact round
 
 
 @pytest.mark.xfail(strict=True, raises=MeshRound.RoundingError,

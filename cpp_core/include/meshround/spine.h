@@ -66,6 +66,8 @@ class BaseDistance {
   std::shared_ptr<const BoxTree> tree_;
   const std::vector<ExactRound>* rounds_ = nullptr;
   std::vector<int> on_round_;  // per base facet: the round it lies on, or -1
+  // For base facet i on an earlier round: p's foot on that round's exact surface, when it lies over i.
+  bool exact_foot(int i, const Vec3& p, Vec3* foot) const;
 };
 
 struct SpineContext {
