@@ -12,6 +12,12 @@
 
 namespace meshround {
 
+bool constant_radius(const RoundOptions& own) {
+  return std::all_of(own.radius_law.begin(), own.radius_law.end(), [&](const RadiusControl& c) { return c.radius == own.radius_law[0].radius; });
+}
+
+double one_radius(const RoundOptions& own) { return own.radius_law.empty() ? own.radius : own.radius_law[0].radius; }
+
 const CornerEnd* corner_at(const NetworkPart& net, const Vec3& end_point) {
   for (const CornerEnd& c : net.corners)
     if ((c.point - end_point).norm() <= 1e-9 * std::max(1.0, end_point.cwiseAbs().maxCoeff())) return &c;
@@ -55,11 +61,6 @@ double radius_at_end(const RoundOptions& own, const SharpChain& c, int v, bool* 
   for (int i = 1; i <= 8; ++i)
     if (std::abs(law.at(at_start ? span * i / 8 : c.length - span * i / 8) - r) > kSameCornerRadiusShare * own.effective_tolerance()) *changing = true;
   return r;
-}
-
-// One radius along the whole chain: no law, or a law whose control points all give the same radius.
-bool constant_radius(const RoundOptions& own) {
-  return std::all_of(own.radius_law.begin(), own.radius_law.end(), [&](const RadiusControl& c) { return c.radius == own.radius_law[0].radius; });
 }
 
 // Rounds that meet at a corner (mitre or sphere) meet in one curve only when they have one radius there:

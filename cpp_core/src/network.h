@@ -77,4 +77,9 @@ void plan_corners(const MeshTopology& input, const PickedChains& picked, const R
 std::vector<RoundOptions> options_per_chain(const RoundOptions& opt, const std::vector<SharpChain>& chains,
                                             const std::vector<Vec3>& picked);
 
+// One radius along the whole chain (a chain's own options): no law, or a law whose control points all give
+// the same radius; and that radius (the first control point's, for a law).
+bool constant_radius(const RoundOptions& own);
+double one_radius(const RoundOptions& own);
+
 }  // namespace meshround

@@ -58,16 +58,12 @@ RoundResult round_in_stages(const Points& V, const Triangles& F, const std::vect
     for (size_t k = 0; k < chains.size(); ++k)
       if (stage[k] == s) stage_opt[s].radius_law.insert(stage_opt[s].radius_law.end(), own[k].radius_law.begin(), own[k].radius_law.end());
   }
-  auto radius_of = [&](size_t k) { return own[k].radius_law.empty() ? own[k].radius : own[k].radius_law[0].radius; };
-  auto constant = [&](size_t k) {
-    return std::all_of(own[k].radius_law.begin(), own[k].radius_law.end(), [&](const RadiusControl& c) { return c.radius == radius_of(k); });
-  };
   const RoundResult a = round_edges(V, F, picks[0], stage_opt[0]);
   // The first stage's rounds, exact, for the second to roll on (a chain made first at a rolled corner has one
   // radius: plan_stages).
   std::vector<ExactRound> earlier;
   for (size_t k = 0; k < chains.size(); ++k)
-    if (index_in_first[k] >= 0 && constant(k)) earlier.push_back({a.chains[size_t(index_in_first[k])].spine, radius_of(k)});
+    if (index_in_first[k] >= 0 && constant_radius(own[k])) earlier.push_back({a.chains[size_t(index_in_first[k])].spine, one_radius(own[k])});
   RoundResult b;
   try {
     b = round_edges_after(a.vertices, a.triangles, picks[1], stage_opt[1], earlier);
@@ -99,7 +95,7 @@ RoundResult round_in_stages(const Points& V, const Triangles& F, const std::vect
     const int odd = index_in_first[c.odd], round = nearest_round(out.chains, size_t(offset), c.vertex);
     if (odd >= 0 && round >= 0)
       out.report.corners.push_back(report_rolled_corner(out.vertices, out.triangles, c, out.chains[size_t(odd)], out.chains[size_t(round)],
-                                                        radius_of(c.odd), odd, round));
+                                                        one_radius(own[c.odd]), odd, round));
   }
   if (!opt.write_arrays) out.vertices.resize(0, 3), out.triangles.resize(0, 3);
   return out;
