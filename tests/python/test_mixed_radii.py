@@ -69,8 +69,9 @@ def test_a_rim_rolls_on_around_wall_corners_of_another_radius(draft, r_wall, r_r
 
 
 @pytest.mark.xfail(strict=True, raises=MeshRound.RoundingError,
-                   reason="known: drafted CAD mesh, wall corners larger than the rim: the rim's pass leaves crossing "
-                          "facets on the top face next to the corner (the output check refuses it: result_invalid)")
+                   reason="known: the drafted pocket's CAD mesh (top face in a few 80 mm facets): the rim's pass on the "
+                          "wall corners' result leaves crossing facets on the top face at the contact line beside a corner, "
+                          "at some radii, mixed or not (1.5, 2.2, 2.5, 4 mm alike; 2, 3, 5 round); the output check refuses it")
 def test_known_refusal_drafted_cad_walls_larger_than_rim():
     case = cases.Case("rim_walls_10_3_2", cases.pocket_rim_walls(10.0), None, edge_radius=lambda e: 3.0 if vertical(e) else 2.0)
     mesh = case.mesh("cad")
