@@ -1,6 +1,8 @@
 #include "guard.h"
 
 #include <algorithm>
+#include <cstdio>
+#include <cstdlib>
 #include <array>
 #include <iterator>
 #include <string>
@@ -185,6 +187,10 @@ bool find_crossing(const MeshEdit& edit, const std::vector<Facet>& kept, double 
       if ((box[j].first.array() > hi.array()).any() || (box[j].second.array() < lo.array()).any()) return;
       if (tri[i].normal.squaredNorm() == 0 || tri[j].normal.squaredNorm() == 0) return;  // counted as degenerate
       hit = triangles_cross(tri[i], tri[j], slack);
+      if (hit && std::getenv("MESHROUND_DEBUG")) {  // the two facets, for whoever traces the cause
+        std::fprintf(stderr, "guard: made facet %zu crosses %s facet:\n", i, size_t(j) >= made.size() ? "a kept" : "a made");
+        for (auto* t : {&tri[i], &tri[size_t(j)]}) std::fprintf(stderr, "  (%.6f %.6f %.6f) (%.6f %.6f %.6f) (%.6f %.6f %.6f)\n", t->p[0].x(), t->p[0].y(), t->p[0].z(), t->p[1].x(), t->p[1].y(), t->p[1].z(), t->p[2].x(), t->p[2].y(), t->p[2].z());
+      }
     });
     if (hit) {
       *where = (tri[i].p[0] + tri[i].p[1] + tri[i].p[2]) / 3;
