@@ -10,6 +10,8 @@ chain meeting at it.
   agree there round; radii that differ there, or a law still changing within 2 r of the corner, are
   refused naming the vertex, the input intact, and plan_network says so before any rounding.
 """
+import json
+
 import pytest
 
 import FreeCAD
@@ -19,6 +21,7 @@ import cases
 import reference
 
 import MeshRound
+from test_cli import meshround
 
 V = FreeCAD.Vector
 NEAR_CORNER = 0.03  # the issue's bound within 1 r of a corner vertex, relative to r
@@ -152,3 +155,28 @@ def test_radii_that_differ_at_a_sphere_corner_are_refused_naming_the_corner():
     # the same three chains with one radius each, all 5, round: the corner is the ball of 5
     res = MeshRound.round_edges(mesh, seeds, [(s, 5.0) for s in seeds])
     assert [(c["kind"], c["radius"]) for c in res.report["corners"]] == [("sphere", 5.0)]
+
+
+def test_the_command_line_gives_each_chain_its_radius(tmp_path):
+    """`meshround round` with --seed and --radius-at repeated: the rim at 3 rolls on around wall corners of 2;
+    radii 5 and 8 at a mitre: exit status 1, the code and the corner printed."""
+    solid, edges = cases.pocket_rim_walls(0.0)()
+    src = tmp_path / "pocket.stl"
+    cases.mesh_of(solid, MaxLength=2.5).write(str(src))
+    args = []
+    for e in edges:
+        p = e.valueAt(0.5 * (e.FirstParameter + e.LastParameter))
+        xyz = f"{p.x:g},{p.y:g},{p.z:g}"
+        args += ["--seed", xyz, "--radius-at", f"{xyz}:{2 if vertical(e) else 3}"]
+    report = tmp_path / "report.json"
+    run = meshround("round", src, tmp_path / "out.stl", *args, "--report", report)
+    assert run.returncode == 0, run.stderr
+    corners = json.loads(report.read_text())["corners"]
+    assert sorted((c["kind"], c["radius"]) for c in corners) == [("rolled", 2.0)] * 4
+    solid, _, seeds = box_top_corner_seeds()
+    src = tmp_path / "box.stl"
+    cases.mesh_of(solid, MaxLength=2.5).write(str(src))
+    run = meshround("round", src, tmp_path / "box_out.stl", "--seed", "50,60,40", "--seed", "100,30,40",
+                    "--radius-at", "50,60,40:5", "--radius-at", "100,30,40:8")
+    assert run.returncode == 1 and "corner_not_blendable" in run.stderr and "(100, 60, 40)" in run.stderr, run.stderr
+    assert not (tmp_path / "box_out.stl").exists()
