@@ -154,6 +154,7 @@ std::vector<int> plan_stages(const MeshTopology& input, const std::vector<SharpC
                           ": such corners are not made together yet (round them in two calls)");
     want[k] = stage, asked_at[k] = at;
   };
+  std::vector<RoundOptions> own;  // each chain's options, made the first time a law meets a rolled corner
   for (const auto& [v, ids] : ending) {
     // A flipped or non-manifold facet at a corner would pass for another face meeting there: the input's
     // fault, named as such before the corner is judged.
@@ -169,7 +170,8 @@ std::vector<int> plan_stages(const MeshTopology& input, const std::vector<SharpC
         RolledCorner c;
         c.vertex = input.point(v), c.odd = ids[size_t(odd)], c.odd_convex = sign[odd] > 0;
         c.pair = {ids[size_t((odd + 1) % 3)], ids[size_t((odd + 2) % 3)]};
-        if (!opt.radius_law.empty() && !constant_radius(options_per_chain(opt, chains, picked)[c.odd]))
+        if (!opt.radius_law.empty() && own.empty()) own = options_per_chain(opt, chains, picked);
+        if (!own.empty() && !constant_radius(own[c.odd]))
           throw RoundingError(ErrorCode::CornerNotBlendable, "the chain picked at " + format_point(picked[c.odd]) + " meets the others at " +
                               format_point(c.vertex) + ", where it is rounded first and they roll on around its end: a variable radius "
                               "along it is not blended there yet (give it one radius; theirs may vary)");
