@@ -4,7 +4,8 @@ It drives the workbench as a user would (real mouse clicks and the task dialog's
 where it matters), records what it observes in $MESHROUND_GUI_RESULT (JSON), saves screenshots in
 $MESHROUND_GUI_ARTIFACTS, and quits.  Every step is recorded, so a failing step shows in the JSON instead
 of hanging the test.  The steps are in gui_box.py (the workflow on a box), gui_die.py (progress, and
-the preview's speed on a 147k-facet die) and gui_cancel.py (Esc and Cancel during long runs).
+the preview's speed on a 147k-facet die) and gui_cancel.py (Esc and Cancel during long runs); with
+MESHROUND_GUI_STEPS=deck, only gui_deck.py (a solver deck opened, drawn, rounded, exported).
 """
 import json
 import os
@@ -25,12 +26,16 @@ guard = QtCore.QTimer()
 guard.timeout.connect(gui_support.close_message_boxes)
 guard.start(100)
 try:
-    import gui_box
-    import gui_cancel
-    import gui_die
-    gui_box.run(os.path.dirname(RESULT))
-    gui_die.run()
-    gui_cancel.run()
+    if os.environ.get("MESHROUND_GUI_STEPS") == "deck":  # test_gui_deck.py: the solver deck steps alone
+        import gui_deck
+        gui_deck.run(os.path.dirname(RESULT))
+    else:
+        import gui_box
+        import gui_cancel
+        import gui_die
+        gui_box.run(os.path.dirname(RESULT))
+        gui_die.run()
+        gui_cancel.run()
 except Exception:
     gui_support.observed["error"] = traceback.format_exc()
 finally:

@@ -9,6 +9,8 @@
     MeshRound.quality_note(res.report)                            # why new facets are under 10 deg, if any
     deck = MeshRound.read_deck("die.k")                           # solver deck (LS-DYNA/Nastran/Abaqus) as arrays
     res = MeshRound.round_deck("die.k", "die_r5.k", seeds, 5)     # round a deck, write it back (decks.py)
+    deck = MeshRound.open_deck("die.k")                           # in FreeCAD: a Deck feature (parts, quads)
+    MeshRound.export_deck(rounding, "die_r5.k")                   # a Rounding on a Deck, as the rounded deck
     MeshRound.max_radius(mesh, seeds)                             # largest radius per chain, what stops it
     MeshRound.sweep(mesh, seeds, radii, out_dir)                  # one rounded variant per radius + table
     MeshRound.sweep("die.k", seeds, radii, out_dir)               # ... of a solver deck, each variant a deck
@@ -37,6 +39,9 @@ _EXPORTS = {
     "make_rounding": "objects.rounding",
     "read_deck": "decks",
     "round_deck": "decks",
+    "open_deck": "objects.deck",      # a deck as a Deck feature in FreeCAD (issue 14)
+    "make_deck": "objects.deck",
+    "export_deck": "deck_export",
     # radius tools (issue 16)
     "max_radius": "radius_limits",
     "check_rules": "radius_limits",

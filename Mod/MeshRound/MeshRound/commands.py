@@ -1,5 +1,7 @@
 """GUI commands of the MeshRound workbench: name -> command object in COMMANDS (registered with FreeCAD
 by MeshRoundGui.py, whose module name recorded macros import)."""
+import os
+
 import FreeCAD
 import FreeCADGui
 
@@ -46,5 +48,45 @@ def _base_and_seeds():
     return (visible[0], []) if len(visible) == 1 else (None, [])
 
 
+class ExportDeckCommand:
+    """Export the selected Rounding, built on a Deck, as the rounded deck in the deck's own format."""
+
+    def GetResources(self):
+        return {
+            "Pixmap": icon_path("MeshRound_Deck.svg"),
+            "MenuText": "Export rounded deck",
+            "ToolTip": "Write the selected Rounding (on a solver deck opened with File > Open) as the deck, "
+                       "rounded: every other line, ID, part and set kept, in the deck's own format.",
+        }
+
+    def IsActive(self):
+        from .deck_export import _is_rounding
+        return any(_is_rounding(s.Object) for s in FreeCADGui.Selection.getSelectionEx())
+
+    def Activated(self):
+        from PySide import QtGui
+
+        from .deck_export import _is_rounding, deck_chain, export_deck
+        from .deck_formats import DECK_EXTENSIONS, deck_family
+        from .errors import RoundingError
+        rounding = next(s.Object for s in FreeCADGui.Selection.getSelectionEx() if _is_rounding(s.Object))
+        try:
+            deck, _ = deck_chain(rounding)
+            family = deck_family(deck.File)
+            stem, ext = os.path.splitext(deck.File)
+            patterns = " ".join("*" + e for e, f in DECK_EXTENSIONS.items() if f == family)
+            path, _ = QtGui.QFileDialog.getSaveFileName(
+                FreeCADGui.getMainWindow(), "Export rounded deck", f"{stem}_{rounding.Name}{ext}",
+                f"{family} deck ({patterns})")
+            if not path:
+                return
+            result = export_deck(rounding, path)
+        except RoundingError as exc:
+            FreeCAD.Console.PrintError(f"MeshRound: export of {rounding.Label} refused: {exc}\n")
+            QtGui.QMessageBox.warning(FreeCADGui.getMainWindow(), "Export rounded deck", str(exc))
+            return
+        FreeCAD.Console.PrintMessage(f"MeshRound: {rounding.Label} exported to {', '.join(result.paths)}\n")
+
+
 # name -> command, in toolbar and menu order
-COMMANDS = {"MeshRound_RoundEdges": RoundEdgesCommand()}
+COMMANDS = {"MeshRound_RoundEdges": RoundEdgesCommand(), "MeshRound_ExportDeck": ExportDeckCommand()}
