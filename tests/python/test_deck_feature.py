@@ -71,6 +71,7 @@ def test_every_format_opens_as_a_deck_with_its_parts_counts_and_mesh(doc, box, t
     first = vertices[triangles[:len(quads)]]                            # (m, 3, 3)
     assert np.all((first >= lo[:, None]) & (first <= hi[:, None]))
     assert deck.Mesh.isSolid() and not deck.Mesh.hasNonManifolds()
+    assert doc.recompute() == 0  # read once: nothing left to recompute (a big deck takes seconds)
 
 
 def test_a_rounding_on_a_deck_recomputes_and_its_mesh_is_sound(doc, box, tmp_path):

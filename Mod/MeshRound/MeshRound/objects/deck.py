@@ -208,6 +208,7 @@ def make_deck(path, doc=None, name=None):
         message = obj.getStatusString()
         doc.removeObject(obj.Name)
         raise RoundingError(f"cannot open '{path}': {message}", code="invalid_input")
+    obj.purgeTouched()  # read: the document's next recompute must not read it again
     if FreeCAD.GuiUp:  # after the recompute: the view provider draws from what it read
         from ..viewproviders.deck import ViewProviderDeck
         ViewProviderDeck(obj.ViewObject)
