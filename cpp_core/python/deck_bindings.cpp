@@ -49,6 +49,7 @@ py::dict deck_arrays(const Deck& d) {
   for (const DeckSet& s : d.sets) {
     py::dict e;
     e["of_nodes"] = s.of_nodes, e["name"] = s.name, e["id"] = s.id, e["file"] = s.file, e["line"] = s.keyword_line + 1;
+    e["kind_known"] = s.kind_known, e["des"] = s.des;
     e["members"] = py::array_t<long long>(py::ssize_t(s.members.size()), s.members.data());
     e["named_members"] = s.named_members;
     e["generate"] = s.generate;

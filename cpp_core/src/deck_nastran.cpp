@@ -1,6 +1,7 @@
-// Nastran bulk data: GRID, CTRIA3, CQUAD4, PSHELL in small (8-column), large (`*`, 16-column) and free
-// (comma) fields, with continuation lines; INCLUDE '<file>'. Before BEGIN BULK (when the file has one)
-// only INCLUDE is read; after ENDDATA nothing. Every other card is kept as it is.
+// Nastran bulk data: GRID, CTRIA3, CQUAD4, PSHELL, SET1 and SET3 (deck_nastran_sets.cpp) in small
+// (8-column), large (`*`, 16-column) and free (comma) fields, with continuation lines; INCLUDE '<file>'.
+// Before BEGIN BULK (when the file has one) only INCLUDE is read; after ENDDATA nothing. Every other card
+// is kept as it is.
 #include <cstdio>
 #include <algorithm>
 #include <deque>
@@ -18,6 +19,15 @@ struct Record {
 
 bool blank(std::string_view s) { return trim(s).empty(); }
 
+// Cards whose first field is an element ID in the one numbering all elements share: C... (but CORD...) and
+// the rigid elements.
+bool is_other_element(const std::string& name) {
+  if (!name.empty() && name[0] == 'C') return name.rfind("CORD", 0) != 0;
+  for (const char* rigid : {"RBAR", "RBAR1", "RBE1", "RBE2", "RBE3", "RROD", "RSPLINE", "RTRPLT", "RTRPLT1", "PLOTEL"})
+    if (name == rigid) return true;
+  return false;
+}
+
 // A line that continues the record before it: '+' or '*' in column 1, a free-field ',' first, or a
 // blank first field followed by data.
 bool is_continuation(std::string_view line) {
@@ -27,7 +37,9 @@ bool is_continuation(std::string_view line) {
 }
 
 struct NasReader {
+  NasReader(Reader& reader, NastranSets& shared, int f, bool in_bulk) : r(reader), sets(shared), file(f), bulk(in_bulk) {}
   Reader& r;
+  NastranSets& sets;
   int file;
   bool bulk;  // inside the bulk data section
 
@@ -35,6 +47,8 @@ struct NasReader {
   Deck& d() { return r.deck; }
 
   std::deque<std::string> expanded;  // tab-expanded lines of the record being read (fields view them)
+  std::vector<int> field_line;       // the line of each data field of the record being read
+  int overflow = -1;                 // a free-field line of it with more than 10 fields (-1: none)
 
   // A fixed-field line with its tabs expanded to the next 8-column field, as Nastran reads it.
   std::string_view expand_tabs(std::string_view line) {
@@ -50,14 +64,19 @@ struct NasReader {
   // The data fields of a record (field 2 on, continuation markers left out), and its style.
   std::vector<std::string_view> data_fields(const Record& rec, std::string& name, FieldStyle& style) {
     std::vector<std::string_view> out;
+    field_line.clear();
+    overflow = -1;
     for (size_t k = 0; k < rec.lines.size(); ++k) {
       const std::string_view line = line_of(f(), rec.lines[k]);
+      field_line.resize(out.size(), rec.lines[k > 0 ? k - 1 : 0]);
       if (line.find(',') != std::string_view::npos) {
         auto toks = split_commas(line);
         if (k == 0) name = upper(toks[0]), style = FieldStyle::Free;
         const bool large = !toks[0].empty() && toks[0].back() == '*';
         const size_t per = large ? 4 : 8;
         for (size_t j = 1; j < toks.size() && j <= per; ++j) out.push_back(toks[j]);
+        for (size_t j = per + 2; j < toks.size() && overflow < 0; ++j)
+          if (!toks[j].empty()) overflow = rec.lines[k];
         continue;
       }
       std::string_view line_fixed = line;
@@ -68,6 +87,7 @@ struct NasReader {
       const size_t w = large ? 16 : 8, per = large ? 4 : 8;
       for (size_t j = 0; j < per; ++j) out.push_back(trim(column(line_fixed, 8 + j * w, w)));
     }
+    field_line.resize(out.size(), rec.lines.back());
     if (!name.empty() && name.back() == '*') name.pop_back();
     return out;
   }
@@ -116,9 +136,14 @@ void NasReader::record(const Record& rec) {
     DeckPart p;
     p.id = need_int(at(fs, 0), line, "PSHELL PID");
     d().parts.push_back(p);
-  } else if (!name.empty() && name[0] == 'C' && name.rfind("CORD", 0) != 0) {
+  } else if (name == "SET1" || name == "SET3") {
+    sets.card(d(), file, rec.first, rec.last, name, style, fs, field_line, overflow);
+  } else if (is_other_element(name)) {
     long long id;
-    if (parse_int(at(fs, 0), id) && id > d().max_element_id) d().max_element_id = id;
+    if (parse_int(at(fs, 0), id)) {
+      d().max_element_id = std::max(d().max_element_id, id);
+      sets.other_elements.push_back(id);
+    }
   }
 }
 
@@ -151,7 +176,7 @@ void NasReader::run() {
       if (a == std::string::npos || b <= a) refuse(f(), first, "INCLUDE needs a quoted file name");
       const int inc = r.include(file, first, quoted.substr(a + 1, b - a - 1));
       ++r.depth;
-      NasReader sub{r, inc, bulk};
+      NasReader sub(r, sets, inc, bulk);
       sub.run();
       --r.depth;
       continue;
@@ -176,10 +201,32 @@ void NasReader::run() {
   flush();
 }
 
-std::string fixed_int(long long x, int w) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%-*lld", w, x);
-  return buf;
+// A card laid out in a style: small field (8 columns, 8 data fields a line) when every field fits 8 columns
+// and the style is Fixed; else large (`*`, 16 columns, 4 a line) when they fit 16 and the style is not
+// Free; else free field (commas, 8 a line). Continuation lines have a blank field 1 (`*` in large field).
+std::string card_text(const std::string& name, const std::vector<std::string>& fields, FieldStyle style, const std::string& eol) {
+  size_t widest = 0;
+  for (const std::string& x : fields) widest = std::max(widest, x.size());
+  const size_t w = style == FieldStyle::Fixed && widest <= 8 ? 8 : style != FieldStyle::Free && widest <= 16 ? 16 : 0;
+  if (w == 0) {
+    std::string out = name;
+    for (size_t k = 0; k < fields.size(); ++k) out += (k && k % 8 == 0 ? eol + "," : ",") + fields[k];
+    return out + eol;
+  }
+  const size_t per = w == 8 ? 8 : 4;
+  std::string out, line = w == 8 ? name : name + "*";
+  auto flush = [&] {
+    while (!line.empty() && line.back() == ' ') line.pop_back();
+    out += line + eol;
+  };
+  line.resize(8, ' ');
+  for (size_t k = 0; k < fields.size(); ++k) {
+    if (k && k % per == 0) flush(), line = w == 8 ? "        " : "*       ";
+    line += fields[k];
+    line.resize(8 + (k % per + 1) * w, ' ');
+  }
+  flush();
+  return out;
 }
 
 std::string large_real(double x) {
@@ -191,8 +238,10 @@ std::string large_real(double x) {
 }  // namespace
 
 void read_nastran(Reader& r, int file) {
-  NasReader reader{r, file, false};
+  NastranSets sets;
+  NasReader reader(r, sets, file, false);
   reader.run();
+  sets.resolve(r.deck);
 }
 
 std::string nastran_node(const DeckNode& n, FieldStyle style, const std::string& eol) {
@@ -210,31 +259,30 @@ std::string nastran_node(const DeckNode& n, FieldStyle style, const std::string&
 }
 
 std::string nastran_shell(const DeckShell& s, FieldStyle style, const std::string& eol) {
-  const std::string name = s.count == 4 ? "CQUAD4" : "CTRIA3";
-  std::vector<long long> v = {s.id, s.part};
-  for (int k = 0; k < s.count; ++k) v.push_back(s.nodes[k]);
-  if (style == FieldStyle::Free) {
-    std::string out = name;
-    for (long long x : v) out += "," + std::to_string(x);
-    return out + eol;
+  std::vector<std::string> v = {std::to_string(s.id), std::to_string(s.part)};
+  for (int k = 0; k < s.count; ++k) v.push_back(std::to_string(s.nodes[k]));
+  return card_text(s.count == 4 ? "CQUAD4" : "CTRIA3", v, style, eol);
+}
+
+std::string nastran_set(const DeckSet& s, const std::vector<long long>& ids, const std::string& eol) {
+  const std::string name = s.des.empty() ? "SET1" : "SET3";
+  if (ids.empty()) throw RoundingError(ErrorCode::InvalidInput, "deck edit: " + name + " " + std::to_string(s.id) + " would hold no ID");
+  std::vector<std::string> v = {std::to_string(s.id)};
+  if (!s.des.empty()) v.push_back(s.des);
+  // Runs of three or more consecutive IDs as "first THRU last" -- in a SET1 of known kind only, whose IDs
+  // the deck defines: a range leaves out IDs the deck does not define (a SET3 may list such IDs).
+  const bool ranges = s.kind_known && s.des.empty();
+  for (size_t k = 0; k < ids.size();) {
+    size_t j = k;
+    while (ranges && j + 1 < ids.size() && ids[j] < ids[j + 1] && ids[j + 1] == ids[j] + 1) ++j;
+    if (j - k >= 2) {
+      v.insert(v.end(), {std::to_string(ids[k]), "THRU", std::to_string(ids[j])});
+    } else {
+      for (size_t i = k; i <= j; ++i) v.push_back(std::to_string(ids[i]));
+    }
+    k = j + 1;
   }
-  bool small = true;
-  for (long long x : v) small = small && std::to_string(x).size() <= 8;
-  if (small) {
-    std::string out = name;
-    out.resize(8, ' ');
-    for (long long x : v) out += fixed_int(x, 8);
-    while (!out.empty() && out.back() == ' ') out.pop_back();
-    return out + eol;
-  }
-  std::string out = name + "*";
-  out.resize(8, ' ');
-  for (size_t k = 0; k < v.size(); ++k) {
-    if (k == 4) out += eol + "*       ";
-    out += fixed_int(v[k], 16);
-  }
-  while (!out.empty() && out.back() == ' ') out.pop_back();
-  return out + eol;
+  return card_text(name, v, s.style, eol);
 }
 
 }  // namespace meshround::decktext

@@ -47,6 +47,26 @@ struct Reader {
   int include(int from, int line, const std::string& name);
 };
 
+// Nastran SET1 / SET3 cards, read while the bulk data is (deck_nastran_sets.cpp) and resolved to grid or
+// element sets once the whole deck is (a SET1 does not say which it holds: DeckSet::kind_known).
+struct NastranSets {
+  struct Item {
+    long long first, last;  // an ID (first == last) or a THRU range
+    bool range;
+  };
+  struct Pending {
+    int set;  // index into Deck::sets
+    std::vector<Item> items;
+  };
+  std::vector<Pending> pending;
+  std::vector<long long> other_elements;  // IDs of element cards other than CTRIA3 / CQUAD4 (CBAR, RBE2, ...)
+  // One card: `fields` are its data fields (field 2 on), `field_line` the line of each, `overflow` a
+  // free-field line with more than 10 fields (-1: none). Refuses a malformed card naming its line.
+  void card(Deck& d, int file, int first, int last, const std::string& name, FieldStyle style,
+            const std::vector<std::string_view>& fields, const std::vector<int>& field_line, int overflow);
+  void resolve(Deck& d) const;
+};
+
 void read_lsdyna(Reader& r, int file);
 void read_nastran(Reader& r, int file);
 void read_abaqus(Reader& r, int file);
@@ -57,6 +77,7 @@ std::string lsdyna_shell(const DeckShell& s, FieldStyle style, const std::string
 std::string lsdyna_members(const std::vector<long long>& ids, FieldStyle style, const std::string& eol);
 std::string nastran_node(const DeckNode& n, FieldStyle style, const std::string& eol);
 std::string nastran_shell(const DeckShell& s, FieldStyle style, const std::string& eol);
+std::string nastran_set(const DeckSet& s, const std::vector<long long>& ids, const std::string& eol);
 std::string abaqus_node(const DeckNode& n, const std::string& eol);
 std::string abaqus_shell(const DeckShell& s, const std::string& eol);
 std::string abaqus_members(const std::vector<long long>& ids, const std::vector<std::string>& names,

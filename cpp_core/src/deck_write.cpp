@@ -120,8 +120,11 @@ void rewrite_sets(const Deck& d, const DeckEdits& e, std::vector<FileOut>& out) 
     if (index < 0 || index >= int(d.sets.size())) bad_edit("no set " + std::to_string(index));
     const DeckSet& s = d.sets[index];
     const DeckFile& f = d.files[s.file];
-    const std::string text = d.format == DeckFormat::LsDyna ? lsdyna_members(ids, s.style, f.eol)
-                                                            : abaqus_members(ids, s.named_members, f.eol);
+    for (long long id : ids)
+      if (id <= 0) bad_edit("set " + std::to_string(index) + " is given the ID " + std::to_string(id) + " (IDs are positive)");
+    const std::string text = d.format == DeckFormat::LsDyna    ? lsdyna_members(ids, s.style, f.eol)
+                             : d.format == DeckFormat::Nastran ? nastran_set(s, ids, f.eol)
+                                                               : abaqus_members(ids, s.named_members, f.eol);
     FileOut& o = out[s.file];
     if (s.data_end > s.data_begin) {
       o.replace[s.data_begin] = text;
@@ -181,7 +184,6 @@ std::vector<std::string> write_deck(const Deck& d, const DeckEdits& e) {
     const DeckShell& last = d.shells.back();
     out[last.file].after[last.line + last.lines - 1] += shells_text(d, e.new_shells, last.style, d.files[last.file].eol);
   }
-  if (!e.set_members.empty() && d.format == DeckFormat::Nastran) bad_edit("Nastran sets are not read, so cannot be rewritten");
   rewrite_sets(d, e, out);
 
   std::vector<std::string> texts(d.files.size());

@@ -28,6 +28,18 @@ std::vector<std::string> lines(const std::string& text) {
   return out;
 }
 
+// How many of `before`'s lines are in `after`, in order (matched greedily).
+int kept_in_order(const std::vector<std::string>& before, const std::vector<std::string>& after) {
+  size_t j = 0;
+  int kept = 0;
+  for (const std::string& l : before) {
+    size_t k = j;
+    while (k < after.size() && after[k] != l) ++k;
+    if (k < after.size()) ++kept, j = k + 1;
+  }
+  return kept;
+}
+
 Deck parse(const std::string& text, DeckFormat format, std::map<std::string, std::string> includes = {},
            const std::string& path = "dir/main") {
   return parse_deck(path, text, format, [includes](const std::string& p, std::string& t) {
@@ -183,13 +195,7 @@ TEST(DeckLsDyna, EditsTouchOnlyTheirLines) {
   EXPECT_EQ(r.sets[1].members, (std::vector<long long>{1, 2, 3, 8}));
   EXPECT_FALSE(r.sets[1].generate);
   // Every line of the input that names no edited record is in the output, in order.
-  size_t j = 0;
-  int kept = 0;
-  for (const std::string& l : before) {
-    size_t k = j;
-    while (k < after.size() && after[k] != l) ++k;
-    if (k < after.size()) ++kept, j = k + 1;
-  }
+  const int kept = kept_in_order(before, after);
   EXPECT_EQ(kept, int(before.size()) - 5);  // node 7, element 3, two set data lines, the GENERATE keyword line
   // A removed node an element keeps, and an ID in use, are refused.
   DeckEdits dangling;
@@ -264,6 +270,83 @@ TEST(DeckNastran, EditsAndErrors) {
   EXPECT_EQ(inc.nodes.size(), 3u);
   EXPECT_EQ(inc.shells.size(), 1u);
   expect_unchanged(inc);
+}
+
+// nastran_deck()'s grids 1-7 and elements 1-3 (shells) and 99 (a CBAR), with sets: IDs 1-3 are both.
+std::string nastran_sets_deck() {
+  std::string t = nastran_deck();
+  t.erase(t.find("ENDDATA"));
+  t += "SET1    21      1       2       THRU    5\n";       // grids (2-5: not all elements): 1-5
+  t += "SET1,22,1,3,99\n";                                   // elements (99 is no grid): 1, 3, 99
+  t += "SET1    23      1       2\n";                        // both: kind not known
+  t += "SET1*   24              6               7\n*       1\n";  // large field, continued: grids
+  t += "$ a comment inside a card\n+       3\n";             // ... and on, past a comment
+  t += "SET3    25      ELEM    1       THRU    3\n";        // SET3: as it says
+  t += "SET1    26      5       thru    8\n";                // 8 is nothing: grids 5-7
+  t += "SET1    27      SKIN    1\nRBE2    500     1       123456  2\nENDDATA\n";  // SKIN: not read
+  return t;
+}
+
+TEST(DeckNastran, SetsReadAsGridsOrElementsByTheirIds) {
+  const Deck d = parse(nastran_sets_deck(), DeckFormat::Nastran);
+  ASSERT_EQ(d.sets.size(), 6u);
+  const std::vector<long long> members[6] = {{1, 2, 3, 4, 5}, {1, 3, 99}, {1, 2}, {6, 7, 1, 3}, {1, 2, 3}, {5, 6, 7}};
+  const bool nodes[6] = {true, false, false, true, false, true}, known[6] = {true, true, false, true, true, true};
+  for (int i = 0; i < 6; ++i) {
+    EXPECT_EQ(d.sets[i].id, 21 + i);
+    EXPECT_EQ(d.sets[i].members, members[i]) << i;
+    EXPECT_EQ(d.sets[i].kind_known, known[i]) << i;
+    if (known[i]) EXPECT_EQ(d.sets[i].of_nodes, nodes[i]) << i;
+  }
+  EXPECT_EQ(d.sets[1].style, FieldStyle::Free);
+  EXPECT_EQ(d.sets[3].style, FieldStyle::Long);
+  EXPECT_EQ(d.sets[3].data_end - d.sets[3].data_begin, 4);  // two lines, the comment and the last
+  EXPECT_EQ(d.sets[4].des, "ELEM");
+  EXPECT_EQ(d.max_element_id, 500);  // a rigid element's ID counts
+  expect_unchanged(d);
+}
+
+TEST(DeckNastran, ChangedSetsRewrittenInTheirOwnFieldsTheRestKept) {
+  const Deck d = parse(nastran_sets_deck(), DeckFormat::Nastran);
+  DeckEdits e;
+  e.set_members = {{0, {7, 1, 2, 3, 4, 5, 6}}, {1, {3, 99, 123456789}}, {2, {1, 2, 3}}, {3, {6, 1, 3, 7, 2, 4, 5}}, {4, {1, 3}}, {5, {5, 6, 123456789}}};
+  const std::string out = write_deck(d, e)[0];
+  EXPECT_NE(out.find("\nSET1    21      7       1       THRU    6\n"), std::string::npos);  // a run as a range
+  EXPECT_NE(out.find("\nSET1    23      1       2       3\n"), std::string::npos);  // kind unknown: no range
+  EXPECT_NE(out.find("\nSET1,22,3,99,123456789\n"), std::string::npos);
+  EXPECT_NE(out.find("\nSET1*   24              6               1               3\n*       7               2               4               5\n"), std::string::npos);
+  EXPECT_NE(out.find("\nSET1*   26              5               6               123456789\n"), std::string::npos);  // too wide for 8
+  EXPECT_NE(out.find("\nSET3    25      ELEM    1       3\n"), std::string::npos);
+  // Every other line as it was, in order: the six cards' 8 lines and the comment inside one went.
+  const auto before = lines(d.files[0].text), after = lines(out);
+  const int kept = kept_in_order(before, after);
+  EXPECT_EQ(kept, int(before.size()) - 9);
+  const Deck r = parse(out, DeckFormat::Nastran);
+  ASSERT_EQ(r.sets.size(), 6u);
+  EXPECT_EQ(r.sets[0].members, (std::vector<long long>{7, 1, 2, 3, 4, 5, 6}));
+  EXPECT_EQ(r.sets[3].members, (std::vector<long long>{6, 1, 3, 7, 2, 4, 5}));
+  EXPECT_EQ(r.sets[4].members, (std::vector<long long>{1, 3}));
+  EXPECT_THROW(write_deck(d, DeckEdits{{}, {}, {}, {}, {{0, {}}}}), RoundingError);    // no ID left
+  EXPECT_THROW(write_deck(d, DeckEdits{{}, {}, {}, {}, {{0, {1, -2}}}}), RoundingError);
+}
+
+TEST(DeckNastran, MalformedSetsRefusedWithFileLineAndReason) {
+  const std::pair<const char*, const char*> cases[] = {
+      {"SET1    5       1       THRU\n", "dir/main:1: SET1 5: THRU without an ID after it"},
+      {"SET1    5       THRU    3\n", "dir/main:1: SET1 5: THRU without an ID before it"},
+      {"SET1    5       1       THRU    4       THRU    9\n", "dir/main:1: SET1 5: THRU without an ID before it"},
+      {"SET1    5       9       THRU    3\n", "dir/main:1: SET1 5: bad THRU range 9 THRU 3"},
+      {"GRID,1,,0.,0.,0.\nSET1    5       1\n        x\n", "dir/main:3: bad SET1 ID 'x'"},
+      {"SET1    5       1       -4\n", "dir/main:1: SET1 5: IDs must be positive, got -4"},
+      {"SET1    0       1\n", "dir/main:1: SET1 SID must be positive, got 0"},
+      {"SET1,a,1\n", "dir/main:1: bad SET1 SID 'a'"},
+      {"SET1    5\n", "dir/main:1: SET1 5 lists no ID"},
+      {"SET3    5               1\n", "dir/main:1: SET3 5 has no DES"},
+      {"SET1,5,1,2,3,4,5,6,7,8,,9\n", "dir/main:1: SET1: more than 10 fields on a free-field line"},
+  };
+  for (const auto& [text, why] : cases) EXPECT_NE(refusal(text, DeckFormat::Nastran).find(why), std::string::npos) << text;
+  // Not read, kept: OptiStruct's EXCEPT, SET3 of properties.
+  EXPECT_TRUE(parse("SET1    5       1       THRU    9       EXCEPT  4\nSET3    6       PROP    1\n", DeckFormat::Nastran).sets.empty());
 }
 
 std::string abaqus_deck() {

@@ -118,10 +118,43 @@ def _nastran(style, xyz, node_ids, elem_ids, parts, nodes, near, far, edge):
         else:  # small fields with a continuation carrying the thickness flag
             elems.append("CQUAD4  %-8d%-8d%-8d%-8d%-8d%-8d0.      +" % (e, pid, *n))
             elems.append("+               1.0")
-    tail = ["SPC1    1       123456  %-8d" % edge[0], "ENDDATA"]
+    sets = [*_nastran_set(style, 11, near), *_nastran_set(style, 12, far), *_nastran_set(style, 13, edge)]
+    tail = sets + ["SPC1    1       123456  %-8d" % edge[0], "ENDDATA"]
     if style == "nastran_large":
         return "\n".join(head + ["INCLUDE 'box_grids.bdf'"] + elems + tail) + "\n", ("box_grids.bdf", "\n".join(grids) + "\n")
     return "\n".join(head + grids + elems + tail) + "\n", None
+
+
+def _thru(ids):
+    """IDs with runs of three or more written as `first THRU last`."""
+    out, k = [], 0
+    while k < len(ids):
+        j = k
+        while j + 1 < len(ids) and ids[j + 1] == ids[j] + 1:
+            j += 1
+        out += [str(ids[k]), "THRU", str(ids[j])] if j - k >= 2 else [str(x) for x in ids[k:j + 1]]
+        k = j + 1
+    return out
+
+
+def _nastran_set(style, sid, ids):
+    """A SET1 card (elements or grids: Nastran does not say) in the style's fields, with continuations: small
+    field with markers in field 10 and field 1, large field with `*`, free field with a blank field 1."""
+    fields = [str(sid)] + _thru(list(ids))
+    if style == "nastran_free":
+        return [("SET1," if k == 0 else ",") + ",".join(fields[k:k + 8]) for k in range(0, len(fields), 8)]
+    per, width = (4, 16) if style == "nastran_large" else (8, 8)
+    rows = [fields[k:k + per] for k in range(0, len(fields), per)]
+    out = []
+    for n, row in enumerate(rows):
+        if style == "nastran_large":
+            head = "SET1*   " if n == 0 else "*       "
+            out.append(head + "".join("%-16s" % x for x in row))
+        else:
+            head = "SET1    " if n == 0 else "%-8s" % ("+S%d%d" % (sid, n))
+            mark = "+S%d%d" % (sid, n + 1) if n + 1 < len(rows) else ""
+            out.append((head + "".join("%-8s" % x for x in row)).ljust(72) + mark)
+    return out
 
 
 def _abaqus(style, xyz, node_ids, elem_ids, parts, nodes, near, far, edge):

@@ -81,9 +81,9 @@ def test_every_style_reads_to_the_values_written_and_round_trips_byte_identical(
         np.testing.assert_array_equal(deck["shell_node_ids"][shells], quads + 1001, err_msg=style)
         assert list(deck["shell_counts"]) == [4] * len(quads)
         np.testing.assert_array_equal(deck["shell_parts"][shells], np.where(faces == 5, 2, 1), err_msg=style)
-        if deck["format"] != "nastran":
-            members = {s["name"] or s["id"]: set(s["members"]) for s in deck["sets"]}
-            assert set(5001 + near) in members.values() and set(1001 + edge) in members.values(), style
+        members = [(s["of_nodes"], set(s["members"])) for s in deck["sets"]]
+        assert (False, set(5001 + near)) in members and (False, set(5001 + far)) in members, style
+        assert (True, set(1001 + edge)) in members, style
         texts = deck["deck"].texts()
         assert deck["deck"].write() == texts, style
         assert texts[0] == open(path, "rb").read()
@@ -155,8 +155,6 @@ def test_parts_sets_and_ids_carry_over(rounded):
     assert top.any() and back.any()
     assert np.all(part[top] == 2) and np.all(part[back] == 1)
     assert set(part) <= {1, 2}
-    if before["format"] == "nastran":
-        return  # (Nastran sets are not read)
     removed_e = np.setdiff1d(before["shell_ids"], after["shell_ids"])
     removed_n = np.setdiff1d(before["node_ids"], after["node_ids"])
     for s0, s1 in zip(before["sets"], after["sets"]):
@@ -172,6 +170,60 @@ def test_parts_sets_and_ids_carry_over(rounded):
                 assert np.all(edge_distance(where[np.isin(ids, added)]) < (REACH + 1) * R)
         else:
             assert len(s1["members"]) == len(s0["members"])
+
+
+def test_sets_touching_the_band_hold_the_replacements_the_far_one_is_kept(rounded, box):
+    """The element set along the edge and the node set on it hold the new elements and nodes in place of the
+    removed ones (Nastran: SET1 cards, rewritten in the deck's own fields); the far set's lines are as they were."""
+    style, path, out, res = rounded
+    xyz, quads, faces, near, far, edge = box
+    before, after = MeshRound.read_deck(path), MeshRound.read_deck(out)
+    index = {key: next(i for i, s in enumerate(before["sets"]) if set(s["members"]) == set(ids))
+             for key, ids in (("near", 5001 + near), ("far", 5001 + far), ("edge", 1001 + edge))}
+    assert sorted(res.report["deck"]["sets_updated"]) == sorted([index["near"], index["edge"]])
+    text0, text1 = lines(path), lines(out)
+    for key, ids, new in (("near", after["shell_ids"], after["shell_ids"] > before["max_element_id"]),
+                          ("edge", after["node_ids"], after["node_ids"] > before["max_node_id"])):
+        s0, s1 = before["sets"][index[key]], after["sets"][index[key]]
+        assert s1["kind_known"] and s1["of_nodes"] == s0["of_nodes"] == (key == "edge")
+        assert np.all(np.isin(s1["members"], ids)), "a set names an ID the deck no longer has"
+        added = np.setdiff1d(s1["members"], s0["members"])
+        assert len(added) and np.all(np.isin(added, ids[new])), (key, added)
+        if key == "edge":
+            assert np.all(edge_distance(after["node_xyz"][np.isin(ids, added)]) < R + 1e-6)
+        first = text1[s1["data_lines"][0] - 1]
+        if style.startswith("nastran"):  # the card in the deck's own fields
+            head = {"nastran_small": b"SET1    ", "nastran_large": b"SET1*   ", "nastran_free": b"SET1,"}[style]
+            assert first.startswith(head + str(s0["id"]).encode()), first
+    s0, s1 = before["sets"][index["far"]], after["sets"][index["far"]]
+    assert text0[s0["data_lines"][0] - 1:s0["data_lines"][1] - 1] == text1[s1["data_lines"][0] - 1:s1["data_lines"][1] - 1]
+    np.testing.assert_array_equal(s0["members"], s1["members"])
+
+
+def test_nastran_set1_of_unknown_kind_is_kept_unless_the_rounding_removes_its_ids(box, tmp_path):
+    """A SET1 naming an element and a grid is neither a grid nor an element set: kept as it is far from the
+    band; holding IDs the rounding removes, the rounding is refused naming its card (nothing written)."""
+    xyz, quads, faces, near, far, edge = box
+    path = deck_files.write_deck(str(tmp_path), "nastran_small", *box)
+    low = np.flatnonzero(np.abs(xyz[:, 2]) < 1e-9)[0]  # a grid on the bottom face
+    text = lines(path)
+    at = next(k for k, t in enumerate(text) if t.startswith(b"ENDDATA"))
+    text.insert(at, b"SET1    14      %-8d%-8d\n" % (5001 + far[0], 1001 + low))
+    with open(path, "wb") as f:
+        f.write(b"".join(text))
+    out = str(tmp_path / "out" / "box.bdf")
+    os.makedirs(os.path.dirname(out))
+    MeshRound.round_deck(path, out, [SEED], R)
+    s = next(s for s in MeshRound.read_deck(out)["sets"] if s["id"] == 14)
+    assert not s["kind_known"] and lines(out)[s["line"] - 1] == text[at]
+    text[at] = b"SET1    14      %-8d%-8d\n" % (5001 + near[0], 1001 + edge[len(edge) // 2])
+    with open(path, "wb") as f:
+        f.write(b"".join(text))
+    os.remove(out)
+    with pytest.raises(MeshRound.RoundingError) as err:
+        MeshRound.round_deck(path, out, [SEED], R)
+    assert err.value.code == "invalid_input" and f"{path}:{at + 1}: SET1 14 holds IDs the rounding removes" in str(err.value)
+    assert "SET3 with GRID or ELEM" in str(err.value) and not os.path.exists(out)
 
 
 def test_rounded_deck_matches_occt_fillet_both_ways(rounded, case):

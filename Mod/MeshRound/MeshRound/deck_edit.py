@@ -12,7 +12,9 @@ new nodes, new elements, sets with new members) and a summary for the report.
      the two halves within max_warp degrees of each other (best quads first).
   4. A new element takes the part of the removed element nearest to it (centroids); a set that held
      removed elements (nodes) gets the new elements (nodes) whose nearest removed one it held, and the new
-     one nearest to each removed member.
+     one nearest to each removed member.  A Nastran SET1 whose IDs do not tell grids from elements
+     (kind_known False) is kept as it is, unless it holds an ID the rounding removes: then the rounding is
+     refused (which to put in its place is not known).
 """
 import numpy as np
 
@@ -266,6 +268,9 @@ def _set_updates(arrays, removed, new):
     for index, s in enumerate(arrays["sets"]):
         kind = "nodes" if s["of_nodes"] else "elements"
         members = np.asarray(s["members"], np.int64)
+        if not s.get("kind_known", True):
+            _refuse_if_touched(arrays, s, removed)
+            continue
         held = np.isin(members, removed[kind][0])
         if not np.any(held):
             continue
@@ -276,3 +281,16 @@ def _set_updates(arrays, removed, new):
             added = np.union1d(made[np.isin(by, members[held])], closest[np.isin(removed[kind][0], members[held])])
         updates.append((index, np.concatenate([members[~held], added])))
     return updates
+
+
+def _refuse_if_touched(arrays, s, removed):
+    """A set of unknown kind (a Nastran SET1 whose IDs are grid and element IDs alike, or neither) that holds an
+    ID the rounding removes as a grid or as an element: RoundingError (invalid_input) naming its card."""
+    members = np.asarray(s["members"], np.int64)
+    gone = [f"{what} {int(x)}" for what, kind in (("grid", "nodes"), ("element", "elements"))
+            for x in members[np.isin(members, removed[kind][0])][:3]]
+    if gone:
+        raise RoundingError(f"{arrays['files'][s['file']]}:{s['line']}: SET1 {s['id']} holds IDs the rounding "
+                            f"removes ({', '.join(gone)}), and whether it is a set of grids or of elements is not "
+                            "clear from its IDs (they are not all grid IDs alone or all element IDs alone): give it "
+                            "as SET3 with GRID or ELEM to round this deck", code="invalid_input")

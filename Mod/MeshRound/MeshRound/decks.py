@@ -14,7 +14,8 @@ rounded mesh is turned back into elements:
     triangles share an edge and form a good convex quad (the round's rows x columns), else triangles;
   - new nodes and elements get IDs above the deck's largest (or from node_id_start / element_id_start);
   - a new element takes the part of the nearest removed element; sets that held removed elements/nodes
-    hold the new elements/nodes that replace them (nearest removed one in the set);
+    hold the new elements/nodes that replace them (nearest removed one in the set); a Nastran SET1 whose
+    IDs do not tell grids from elements refuses the rounding if it holds a removed ID;
   - nodes no element uses any more are removed (keep_unused_nodes=True keeps them).
 The written deck is read again and checked (IDs unique, no new open or non-manifold edge) before it
 replaces out_path; on any failure nothing is written.
@@ -56,7 +57,8 @@ class DeckRoundingResult:
 def read_deck(path):
     """The deck at `path` (format by extension, includes followed) as a dict of arrays (CONTRACT.md):
     node_ids, node_xyz, shell_ids, shell_parts, shell_counts, shell_nodes (indices), shell_node_ids,
-    parts [(id, name)], sets [{of_nodes, name, id, members, ...}], files, max_node_id, max_element_id;
+    parts [(id, name)], sets [{of_nodes, kind_known, name, id, members, ...}] (Nastran SET1/SET3 too),
+    files, max_node_id, max_element_id;
     plus "deck", the engine's Deck (its .texts() are the files' bytes).  Raises RoundingError
     (invalid_input) naming file:line and the reason for a malformed line."""
     _check_extension(path)

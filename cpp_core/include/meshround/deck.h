@@ -63,13 +63,22 @@ struct DeckPart {
 
 struct DeckSet {
   bool of_nodes = true;   // node set, or shell/element set
+  // Nastran SET1 does not say what it holds: it is a grid set when its IDs are all grid IDs and not all
+  // element IDs, an element set the other way round. IDs a THRU range names that the deck does not define
+  // are left out, as Nastran does; when neither kind holds every ID, the one kind that holds every ID
+  // given alone and some ID of the ranges is taken. Otherwise (IDs all both, grids and elements mixed, or
+  // IDs the deck does not define) the kind is not known: members are then the IDs given alone and the
+  // ranges' grids and elements, and of_nodes is meaningless. A SET3 says: GRID or ELEM.
+  bool kind_known = true;
   std::string name;       // Abaqus set name or LS-DYNA title ("" when none)
-  long long id = 0;       // LS-DYNA SID (0 for Abaqus)
-  std::vector<long long> members;  // IDs, in the deck's order, ranges (GENERATE) expanded
+  long long id = 0;       // LS-DYNA SID, Nastran SID (0 for Abaqus)
+  std::string des;        // Nastran SET3's DES (GRID or ELEM); "" for SET1 and the other formats
+  std::vector<long long> members;  // IDs, in the deck's order, ranges (GENERATE, THRU) expanded
   std::vector<std::string> named_members;  // Abaqus members that are other sets' names (kept as they are)
   int file = 0;
-  int keyword_line = 0;                  // the *SET_.../*NSET/*ELSET line
-  int data_begin = 0, data_end = 0;      // lines holding the members (comments between included)
+  int keyword_line = 0;                  // the *SET_.../*NSET/*ELSET line, Nastran: the card's first line
+  int data_begin = 0, data_end = 0;      // lines holding the members (comments between included; Nastran:
+                                         // the whole card, its first line too)
   bool generate = false;
   FieldStyle style = FieldStyle::Fixed;
 };
