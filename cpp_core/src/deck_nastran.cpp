@@ -138,6 +138,9 @@ void NasReader::record(const Record& rec) {
     d().parts.push_back(p);
   } else if (name == "SET1" || name == "SET3") {
     sets.card(d(), file, rec.first, rec.last, name, style, fs, field_line, overflow);
+  } else if (name == "SPLINE1" || name == "SPLINE2" || name == "SPLINE4" || name == "SPLINE5") {
+    long long setg;  // field 6: the SET1 of the structural grids the spline connects
+    if (parse_int(at(fs, 4), setg)) sets.grid_set_refs.push_back(setg);
   } else if (is_other_element(name)) {
     long long id;
     if (parse_int(at(fs, 0), id)) {

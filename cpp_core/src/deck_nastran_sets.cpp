@@ -1,7 +1,7 @@
 // Nastran SET1 (SID, IDs) and SET3 (SID, DES, IDs) with THRU ranges: read card by card while the bulk data
 // is read, then resolved against the whole deck's grids and elements (deck.h, DeckSet::kind_known).
-// Kept as they are, not read: SET1 with SKIN, cards with OptiStruct's EXCEPT / ENDTHRU, SET3 of POINT or
-// PROP (or another DES).
+// Kept as they are, not read: SET1 with SKIN, cards with OptiStruct's EXCEPT / ENDTHRU or with IDs not
+// above 0 (ZAERO's SET1 has negative ones), SET3 of POINT or PROP (or another DES).
 #include <algorithm>
 
 #include "deck_text.h"
@@ -51,7 +51,7 @@ void NastranSets::card(Deck& d, int file, int first, int last, const std::string
     }
     long long id;
     if (!parse_int(fields[k], id)) refuse(f, line(k), "bad " + name + " ID '" + std::string(fields[k]) + "'");
-    if (id <= 0) refuse(f, line(k), what + ": IDs must be positive, got " + std::to_string(id));
+    if (id <= 0) return;
     p.items.push_back({id, id, false});
     after_id = true;
   }
@@ -113,6 +113,7 @@ void NastranSets::resolve(Deck& d) const {
   for (const DeckNode& n : d.nodes) grids.push_back(n.id);
   for (const DeckShell& s : d.shells) elements.push_back(s.id);
   grids = sorted_unique(std::move(grids)), elements = sorted_unique(std::move(elements));
+  const std::vector<long long> grid_sets = sorted_unique(grid_set_refs);
   for (const Pending& p : pending) {
     DeckSet& s = d.sets[p.set];
     if (!s.des.empty()) {
@@ -125,6 +126,8 @@ void NastranSets::resolve(Deck& d) const {
     const bool g_some = g.loose_all && g.count > 0, e_some = e.loose_all && e.count > 0;
     s.kind_known = g_full != e_full || (!g_full && g_some != e_some);
     s.of_nodes = s.kind_known && (g_full != e_full ? g_full : g_some);
+    if (!s.kind_known && g_some && std::binary_search(grid_sets.begin(), grid_sets.end(), s.id))
+      s.kind_known = s.of_nodes = true;  // a spline's SETG: its grids
     if (!s.kind_known) members(p, {&grids, &elements}, d, s);
     else members(p, {s.of_nodes ? &grids : &elements}, d, s);
   }

@@ -60,6 +60,7 @@ struct NastranSets {
   };
   std::vector<Pending> pending;
   std::vector<long long> other_elements;  // IDs of element cards other than CTRIA3 / CQUAD4 (CBAR, RBE2, ...)
+  std::vector<long long> grid_set_refs;   // SIDs that SPLINE1/2/4/5 name as their SETG: sets of grids
   // One card: `fields` are its data fields (field 2 on), `field_line` the line of each, `overflow` a
   // free-field line with more than 10 fields (-1: none). Refuses a malformed card naming its line.
   void card(Deck& d, int file, int first, int last, const std::string& name, FieldStyle style,

@@ -283,17 +283,19 @@ std::string nastran_sets_deck() {
   t += "$ a comment inside a card\n+       3\n";             // ... and on, past a comment
   t += "SET3    25      ELEM    1       THRU    3\n";        // SET3: as it says
   t += "SET1    26      5       thru    8\n";                // 8 is nothing: grids 5-7
-  t += "SET1    27      SKIN    1\nRBE2    500     1       123456  2\nENDDATA\n";  // SKIN: not read
+  t += "SET1    27      SKIN    1\nRBE2    500     1       123456  2\n";  // SKIN: not read
+  t += "SET1    28      1       2       3\n";                // both: kind not known ...
+  t += "SPLINE1 40      1000    1001    1010    28\nENDDATA\n";  // ... but a spline's grids
   return t;
 }
 
 TEST(DeckNastran, SetsReadAsGridsOrElementsByTheirIds) {
   const Deck d = parse(nastran_sets_deck(), DeckFormat::Nastran);
-  ASSERT_EQ(d.sets.size(), 6u);
-  const std::vector<long long> members[6] = {{1, 2, 3, 4, 5}, {1, 3, 99}, {1, 2}, {6, 7, 1, 3}, {1, 2, 3}, {5, 6, 7}};
-  const bool nodes[6] = {true, false, false, true, false, true}, known[6] = {true, true, false, true, true, true};
-  for (int i = 0; i < 6; ++i) {
-    EXPECT_EQ(d.sets[i].id, 21 + i);
+  ASSERT_EQ(d.sets.size(), 7u);
+  const std::vector<long long> members[7] = {{1, 2, 3, 4, 5}, {1, 3, 99}, {1, 2}, {6, 7, 1, 3}, {1, 2, 3}, {5, 6, 7}, {1, 2, 3}};
+  const bool nodes[7] = {true, false, false, true, false, true, true}, known[7] = {true, true, false, true, true, true, true};
+  for (int i = 0; i < 7; ++i) {
+    EXPECT_EQ(d.sets[i].id, i < 6 ? 21 + i : 28);
     EXPECT_EQ(d.sets[i].members, members[i]) << i;
     EXPECT_EQ(d.sets[i].kind_known, known[i]) << i;
     if (known[i]) EXPECT_EQ(d.sets[i].of_nodes, nodes[i]) << i;
@@ -322,7 +324,7 @@ TEST(DeckNastran, ChangedSetsRewrittenInTheirOwnFieldsTheRestKept) {
   const int kept = kept_in_order(before, after);
   EXPECT_EQ(kept, int(before.size()) - 9);
   const Deck r = parse(out, DeckFormat::Nastran);
-  ASSERT_EQ(r.sets.size(), 6u);
+  ASSERT_EQ(r.sets.size(), 7u);
   EXPECT_EQ(r.sets[0].members, (std::vector<long long>{7, 1, 2, 3, 4, 5, 6}));
   EXPECT_EQ(r.sets[3].members, (std::vector<long long>{6, 1, 3, 7, 2, 4, 5}));
   EXPECT_EQ(r.sets[4].members, (std::vector<long long>{1, 3}));
@@ -337,7 +339,6 @@ TEST(DeckNastran, MalformedSetsRefusedWithFileLineAndReason) {
       {"SET1    5       1       THRU    4       THRU    9\n", "dir/main:1: SET1 5: THRU without an ID before it"},
       {"SET1    5       9       THRU    3\n", "dir/main:1: SET1 5: bad THRU range 9 THRU 3"},
       {"GRID,1,,0.,0.,0.\nSET1    5       1\n        x\n", "dir/main:3: bad SET1 ID 'x'"},
-      {"SET1    5       1       -4\n", "dir/main:1: SET1 5: IDs must be positive, got -4"},
       {"SET1    0       1\n", "dir/main:1: SET1 SID must be positive, got 0"},
       {"SET1,a,1\n", "dir/main:1: bad SET1 SID 'a'"},
       {"SET1    5\n", "dir/main:1: SET1 5 lists no ID"},
@@ -345,8 +346,9 @@ TEST(DeckNastran, MalformedSetsRefusedWithFileLineAndReason) {
       {"SET1,5,1,2,3,4,5,6,7,8,,9\n", "dir/main:1: SET1: more than 10 fields on a free-field line"},
   };
   for (const auto& [text, why] : cases) EXPECT_NE(refusal(text, DeckFormat::Nastran).find(why), std::string::npos) << text;
-  // Not read, kept: OptiStruct's EXCEPT, SET3 of properties.
-  EXPECT_TRUE(parse("SET1    5       1       THRU    9       EXCEPT  4\nSET3    6       PROP    1\n", DeckFormat::Nastran).sets.empty());
+  // Not read, kept: OptiStruct's EXCEPT, ZAERO's negative IDs, SET3 of properties.
+  EXPECT_TRUE(parse("SET1    5       1       THRU    9       EXCEPT  4\nSET1    7       1       -4\nSET3    6       PROP    1\n",
+                    DeckFormat::Nastran).sets.empty());
 }
 
 std::string abaqus_deck() {

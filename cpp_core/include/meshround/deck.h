@@ -68,7 +68,8 @@ struct DeckSet {
   // are left out, as Nastran does; when neither kind holds every ID, the one kind that holds every ID
   // given alone and some ID of the ranges is taken. Otherwise (IDs all both, grids and elements mixed, or
   // IDs the deck does not define) the kind is not known: members are then the IDs given alone and the
-  // ranges' grids and elements, and of_nodes is meaningless. A SET3 says: GRID or ELEM.
+  // ranges' grids and elements, and of_nodes is meaningless -- unless a SPLINE1/2/4/5 names it as its SETG
+  // (a set of grids) and it reads as grids. A SET3 says: GRID or ELEM.
   bool kind_known = true;
   std::string name;       // Abaqus set name or LS-DYNA title ("" when none)
   long long id = 0;       // LS-DYNA SID, Nastran SID (0 for Abaqus)
