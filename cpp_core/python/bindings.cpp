@@ -70,8 +70,26 @@ auto guarded(F&& f) {
   }
 }
 
-RoundOptions to_options(double radius, double tolerance, double feature_angle, double reach, const py::object& radius_law) {
+// The band element controls from a dict {"max_element_angle": deg, "element_length": mm,
+// "max_aspect_ratio": x} (any may be missing; None: all off).
+void set_band_controls(RoundOptions& opt, const py::object& band) {
+  if (band.is_none()) return;
+  if (!py::isinstance<py::dict>(band)) throw RoundingError(ErrorCode::InvalidInput, "band must be a dict of element controls or None");
+  for (auto [key, value] : band.cast<py::dict>()) {
+    const std::string name = py::str(key);
+    double* field = name == "max_element_angle"  ? &opt.max_element_angle_deg
+                    : name == "element_length"   ? &opt.element_length
+                    : name == "max_aspect_ratio" ? &opt.max_aspect_ratio
+                                                 : nullptr;
+    if (!field) throw RoundingError(ErrorCode::InvalidInput, "unknown band element control '" + name + "'");
+    if (!value.is_none()) *field = value.cast<double>();
+  }
+}
+
+RoundOptions to_options(double radius, double tolerance, double feature_angle, double reach, const py::object& radius_law,
+                        const py::object& band) {
   RoundOptions opt;
+  set_band_controls(opt, band);
   opt.radius = radius;
   opt.tolerance = tolerance;
   opt.feature_angle_deg = feature_angle;
@@ -97,9 +115,10 @@ struct Call {
 };
 
 Call to_call(const py::array& vertices, const py::array& triangles, const py::array& seeds, double radius, double tolerance,
-             double feature_angle, double reach, const py::object& radius_law, long max_new_facets, const py::object& cancel) {
+             double feature_angle, double reach, const py::object& radius_law, long max_new_facets, const py::object& cancel,
+             const py::object& band) {
   Call c{to_points(vertices, "vertices"), to_triangles(triangles), to_vecs(to_points(seeds, "seeds")),
-         to_options(radius, tolerance, feature_angle, reach, radius_law)};
+         to_options(radius, tolerance, feature_angle, reach, radius_law, band)};
   set_budget_and_cancel(c.opt, max_new_facets, cancel);
   return c;
 }
@@ -162,8 +181,8 @@ py::tuple apply_delta_py(const py::array& vertices, const py::array& triangles, 
 
 py::dict round_edges_py(const py::array& vertices, const py::array& triangles, const py::array& seeds, double radius,
                         double tolerance, double feature_angle, double reach, const py::object& radius_law, long max_new_facets,
-                        const py::object& cancel, bool arrays) {
-  Call c = to_call(vertices, triangles, seeds, radius, tolerance, feature_angle, reach, radius_law, max_new_facets, cancel);
+                        const py::object& cancel, bool arrays, const py::object& band) {
+  Call c = to_call(vertices, triangles, seeds, radius, tolerance, feature_angle, reach, radius_law, max_new_facets, cancel, band);
   c.opt.write_arrays = arrays;
   RoundResult res;
   {
@@ -181,6 +200,30 @@ void set_budget_and_cancel(RoundOptions& opt, long max_new_facets, const py::obj
     const std::atomic<bool>* flag = &cancel.cast<CancelToken&>().flag;  // the caller's reference outlives the call
     opt.cancelled = [flag] { return flag->load(std::memory_order_relaxed); };
   }
+}
+
+py::dict quality_dict(const ElementQuality& q) {
+  py::dict d;
+  d["elements"] = q.elements, d["quads"] = q.quads, d["triangles"] = q.elements - q.quads;
+  d["min_angle_deg"] = q.min_angle_deg, d["max_angle_deg"] = q.max_angle_deg;
+  d["max_aspect_ratio"] = q.max_aspect_ratio, d["max_warpage_deg"] = q.max_warpage_deg, d["min_side"] = q.min_side;
+  return d;
+}
+
+// element_quality over (n, 3) points and (e, 4) node indices (-1 fourth: a triangle).
+py::dict element_quality_py(const py::array& points, const py::array& elements) {
+  const Points P = to_points(points, "points");
+  auto e = py::array_t<long long, py::array::c_style | py::array::forcecast>::ensure(elements);
+  if (!e || e.ndim() != 2 || e.shape(1) != 4) throw RoundingError(ErrorCode::InvalidInput, "elements must be an (e, 4) array of node indices");
+  std::vector<std::array<int, 4>> els(e.shape(0));
+  for (py::ssize_t i = 0; i < e.shape(0); ++i)
+    for (int k = 0; k < 4; ++k) {
+      const long long id = e.at(i, k);
+      if (id < (k == 3 ? -1 : 0) || id >= P.rows())
+        throw RoundingError(ErrorCode::InvalidInput, "element " + std::to_string(i) + " refers to point " + std::to_string(id) + ", not in points");
+      els[i][k] = int(id);
+    }
+  return quality_dict(element_quality(P, els));
 }
 
 // A RoundResult as the dict CONTRACT.md describes (round_edges' and change_radius' output); `arrays`: the
@@ -232,6 +275,7 @@ py::dict result_dict(const RoundResult& res, bool arrays, bool with_delta) {
     corners.append(d);
   }
   rep["corners"] = corners;
+  rep["band_quality"] = quality_dict(r.band);
   out["report"] = rep;
   out["corner_faces"] = corner_faces;
   return out;
@@ -268,8 +312,8 @@ py::list trace_chains_py(const py::array& vertices, const py::array& triangles, 
 
 // plan_network (round.h): {'chains': [as trace_chains], 'corners': [{'vertex', 'kind', 'chains'}], 'refusal': str | None}.
 py::dict plan_network_py(const py::array& vertices, const py::array& triangles, const py::array& seeds, double radius, double tolerance,
-                         double feature_angle, double reach, const py::object& radius_law) {
-  const Call c = to_call(vertices, triangles, seeds, radius, tolerance, feature_angle, reach, radius_law, 0, py::none());
+                         double feature_angle, double reach, const py::object& radius_law, const py::object& band) {
+  const Call c = to_call(vertices, triangles, seeds, radius, tolerance, feature_angle, reach, radius_law, 0, py::none(), band);
   const NetworkPlan plan = guarded([&] { return plan_network(c.V, c.F, c.seeds, c.opt); });
   py::list corners;
   for (const PlannedCorner& k : plan.corners) {
@@ -334,8 +378,8 @@ py::dict strip_dict(const StripReport& s) {
 
 py::dict change_radius_py(const py::array& vertices, const py::array& triangles, const py::array& seeds, double radius, double tolerance,
                           double feature_angle, double reach, const py::object& radius_law, long max_new_facets, const py::object& cancel,
-                          double strip_turn, double flat_angle, double fit_tolerance) {
-  const Call c = to_call(vertices, triangles, seeds, radius, tolerance, feature_angle, reach, radius_law, max_new_facets, cancel);
+                          double strip_turn, double flat_angle, double fit_tolerance, const py::object& band) {
+  const Call c = to_call(vertices, triangles, seeds, radius, tolerance, feature_angle, reach, radius_law, max_new_facets, cancel, band);
   SharpenOptions so;
   so.strip_turn_deg = strip_turn, so.flat_deg = flat_angle, so.fit_tolerance = fit_tolerance;
   ChangeRadiusResult res;
@@ -396,26 +440,31 @@ PYBIND11_MODULE(_meshround_core, m) {
   m.def("round_edges", &round_edges_py, py::arg("vertices"), py::arg("triangles"), py::arg("seeds"), py::arg("radius"),
         py::arg("tolerance") = 0.0, py::arg("feature_angle") = 30.0, py::arg("reach") = 3.0,
         py::arg("radius_law") = py::none(), py::arg("max_new_facets") = 0, py::arg("cancel") = py::none(), py::arg("arrays") = true,
+        py::arg("band") = py::none(),
         "Round the chains of sharp edges the seeds select. See CONTRACT.md for the arrays and the report.");
   m.def("change_radius", &change_radius_py, py::arg("vertices"), py::arg("triangles"), py::arg("seeds"), py::arg("radius"),
         py::arg("tolerance") = 0.0, py::arg("feature_angle") = 30.0, py::arg("reach") = 3.0, py::arg("radius_law") = py::none(),
         py::arg("max_new_facets") = 0, py::arg("cancel") = py::none(), py::arg("strip_turn") = SharpenOptions{}.strip_turn_deg,
         py::arg("flat_angle") = SharpenOptions{}.flat_deg, py::arg("fit_tolerance") = SharpenOptions{}.fit_tolerance,
+        py::arg("band") = py::none(),
         "Sharpen the existing rounds the seeds pick, then round them at `radius` (0: sharpen only); round_edges' dict plus 'strips'.");
   m.def("apply_delta", &apply_delta_py, py::arg("vertices"), py::arg("triangles"), py::arg("delta"),
         "The rounded mesh (vertices, triangles) from the input arrays and round_edges' res['delta'] (CONTRACT.md).");
   m.attr("MIN_REACH") = kMinReach;
   m.def("validate_options", [](double radius, double tolerance, double feature_angle, double reach,
-                               const py::object& radius_law) {
-          validate_options(to_options(radius, tolerance, feature_angle, reach, radius_law));
+                               const py::object& radius_law, const py::object& band) {
+          validate_options(to_options(radius, tolerance, feature_angle, reach, radius_law, band));
         }, py::arg("radius") = 1.0, py::arg("tolerance") = 0.0, py::arg("feature_angle") = 30.0, py::arg("reach") = 3.0,
-        py::arg("radius_law") = py::none(), "Raise RoundingError (invalid_input) for an option out of range, as round_edges would.");
+        py::arg("radius_law") = py::none(), py::arg("band") = py::none(),
+        "Raise RoundingError (invalid_input) for an option out of range, as round_edges would.");
   m.def("trace_chains", &trace_chains_py, py::arg("vertices"), py::arg("triangles"), py::arg("seeds"),
         py::arg("feature_angle") = 30.0, py::arg("search_radius") = 0.0, "The sharp-edge chains the seeds select: [{'points': (c, 3), 'closed': bool}].");
   m.def("plan_network", &plan_network_py, py::arg("vertices"), py::arg("triangles"), py::arg("seeds"), py::arg("radius"),
         py::arg("tolerance") = 0.0, py::arg("feature_angle") = 30.0, py::arg("reach") = 3.0, py::arg("radius_law") = py::none(),
-        "What round_edges will make of the chains the seeds select: the chains, each corner's blend, or the corner it refuses.");
+        py::arg("band") = py::none(), "What round_edges will make of the chains the seeds select: the chains, each corner's blend, or the corner it refuses.");
   bind_decks(m);
+  m.def("element_quality", &element_quality_py, py::arg("points"), py::arg("elements"),
+        "Element quality as CAE checks it (element_quality.h): smallest/largest angle, aspect ratio, quads' warpage, shortest side.");
   m.def("max_radius", &max_radius_py, py::arg("vertices"), py::arg("triangles"), py::arg("seeds"), py::arg("feature_angle") = 30.0,
         py::arg("reach") = 3.0, py::arg("precision") = 1e-4, py::arg("min_stations") = 256,
         "The largest radius each chain the seeds select can be rounded with, what stops it and where (max_radius.h).");

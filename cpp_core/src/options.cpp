@@ -40,6 +40,12 @@ void validate_options(const RoundOptions& o) {
     invalid("the feature angle must lie between 0 and 180 degrees (got " + format_number(o.feature_angle_deg) + ")");
   if (!(o.reach >= kMinReach) || !std::isfinite(o.reach))
     invalid("the reach factor must be at least " + format_number(kMinReach) + " (got " + format_number(o.reach) + ")");
+  if (!(o.max_element_angle_deg >= 0 && o.max_element_angle_deg <= 90))
+    invalid("the largest element angle must lie between 0 (off) and 90 degrees (got " + format_number(o.max_element_angle_deg) + ")");
+  if (!(o.element_length >= 0) || !std::isfinite(o.element_length))
+    invalid("the element length must be a number >= 0 (got " + format_number(o.element_length) + "; 0 means the input's own)");
+  if (!(o.max_aspect_ratio == 0 || (o.max_aspect_ratio >= 1 && std::isfinite(o.max_aspect_ratio))))
+    invalid("the largest aspect ratio must be at least 1, or 0 for the built-in bound (got " + format_number(o.max_aspect_ratio) + ")");
   if (!(o.max_new_facets > 0)) invalid("the work budget (max_new_facets) must be positive");
 }
 

@@ -9,6 +9,7 @@
 
 #include "delta.h"
 #include "corner_report.h"
+#include "meshround/element_quality.h"
 #include "call_checks.h"
 #include "ends.h"
 #include "facet_quality.h"
@@ -236,8 +237,16 @@ RoundedChain round_one_chain(const MeshTopology& mesh, const ChainSeed& seed, co
 
   MeshEdit edit(mesh);
   edit.max_new_facets = opt.max_new_facets;
-  const int segments = profile_segments(stations, tol);
-  auto spacing = [&](double u) { return std::max(kMaxStepRatio * profile_step(surface, stations, segments, u), 1e-6); };
+  const BandControls controls = BandControls::of(opt);
+  const int segments = profile_segments(stations, tol, controls);
+  auto spacing = [&](double u) { return std::max(controls.longest_along(profile_step(surface, stations, segments, u)), 1e-6); };
+  // The round's rows x columns at these steps, and a row of cut facets beside each trim line (a lower bound
+  // of the facets made) against the work budget, before the trim spaces its lines at them: a tiny element
+  // angle or length is refused at once.
+  double columns = 0;
+  for (size_t i = 1; i < stations.size(); ++i)
+    columns += (stations[i].s - stations[i - 1].s) / spacing(0.5 * (stations[i].s + stations[i - 1].s));
+  edit.check_budget(2.0 * (segments + 2) * columns, "the round's rows and columns at its element steps");
   // Cut facets and end caps get inner points for shape, but only within the reach: beyond it every
   // facet is the input's own, or one whose other corners reach into the band.
   auto within_reach = [&](const Vec3& p) {
@@ -266,7 +275,7 @@ RoundedChain round_one_chain(const MeshTopology& mesh, const ChainSeed& seed, co
       if ((q - p).norm() <= weld) return v;
     return -1;
   };
-  const RoundMeshStats mesh_stats = mesh_rounding_surface(surface, stations, trim, tol, edit, shared);
+  const RoundMeshStats mesh_stats = mesh_rounding_surface(surface, stations, trim, tol, controls, edit, shared);
   timer.done("tessellate");
   const SewStats sew = sew_round(edit, round_begin, round_begin + mesh_stats.facets, shape);
   timer.done("sew");
@@ -403,6 +412,7 @@ RoundResult round_edges_after(const Points& V, const Triangles& F, const std::ve
   auto finished = [&](RoundResult& result) {
     RoundReport& rep = result.report;
     rep.input_forces_small_angles = rep.min_new_angle_deg < 10 && rep.min_input_angle_deg < 10;
+    rep.band = added_facets_quality(V, result.delta);
     rep.seconds_total = std::chrono::duration<double>(Clock::now() - start).count();
     return std::move(result);
   };

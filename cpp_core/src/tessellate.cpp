@@ -87,11 +87,30 @@ class EdgeOffsets {
 
 }  // namespace
 
-int profile_segments(const std::vector<ProfileStation>& stations, double tolerance) {
+BandControls BandControls::of(const RoundOptions& o) {
+  return {o.max_element_angle_deg * M_PI / 180.0, o.element_length, o.max_aspect_ratio};
+}
+
+double BandControls::longest_along(double across) const {
+  const double by_shape = (max_aspect > 0 ? std::min(max_aspect, kMaxStepRatio) : kMaxStepRatio) * across;
+  return element_length > 0 ? std::min(by_shape, element_length) : by_shape;
+}
+
+double BandControls::shortest_along(double across) const {
+  // With an element length the inner rows keep samples about that far apart (0.7 of it: a trim line's
+  // points a little closer than the length stay); else the built-in share of the step across.
+  const double lo = element_length > 0 ? 0.7 * element_length : kMinStepRatio * across;
+  return std::min(lo, longest_along(across));
+}
+
+int profile_segments(const std::vector<ProfileStation>& stations, double tolerance, const BandControls& controls) {
   int n = 2;
   for (const ProfileStation& st : stations) {
     const double step = 2 * std::acos(std::max(0.0, 1 - 0.5 * tolerance / st.radius));  // chord sag <= tol / 2
     n = std::max(n, int(std::ceil(st.angle() / step)));
+    if (controls.max_angle > 0) n = std::max(n, int(std::ceil(st.angle() / controls.max_angle - 1e-9)));
+    if (controls.max_aspect > 0 && controls.element_length > 0)  // across <= max_aspect x the length along
+      n = std::max(n, int(std::ceil(st.radius * st.angle() / (controls.max_aspect * controls.element_length) - 1e-9)));
   }
   return n;
 }
@@ -102,18 +121,19 @@ double profile_step(const RoundingSurface& surface, const std::vector<ProfileSta
 }
 
 RoundMeshStats mesh_rounding_surface(const RoundingSurface& surface, const std::vector<ProfileStation>& stations,
-                                     const TrimLines& trim, double tolerance, MeshEdit& edit, const SharedEnds& shared) {
-  const int nv = profile_segments(stations, tolerance);
+                                     const TrimLines& trim, double tolerance, const BandControls& controls, MeshEdit& edit,
+                                     const SharedEnds& shared) {
+  const int nv = profile_segments(stations, tolerance, controls);
   // (A capped end's profile is moved onto its end face: the surface there is not the ball's section.)
   const ProfileStation* widest = nullptr;
   for (const ProfileStation& st : stations)
     if (!st.cut.active && (!widest || st.angle() > widest->angle())) widest = &st;
   std::vector<double> levels(nv + 1);
   for (int j = 0; j <= nv; ++j) levels[j] = j == 0 ? 0.0 : j == nv ? 1.0 : v_at_angle_fraction(surface, *widest, double(j) / nv);
-  // Steps along the round between 0.4 and 2.5 times the local step across it: facets keep their shape
-  // where a variable radius shrinks.
-  auto h_min = [&](double u) { return 0.4 * profile_step(surface, stations, nv, u); };
-  auto h_max = [&](double u) { return kMaxStepRatio * profile_step(surface, stations, nv, u); };
+  // Steps along the round follow the local step across it (BandControls): facets keep their shape where a
+  // variable radius shrinks.
+  auto h_min = [&](double u) { return controls.shortest_along(profile_step(surface, stations, nv, u)); };
+  auto h_max = [&](double u) { return controls.longest_along(profile_step(surface, stations, nv, u)); };
   const double period = surface.u_last - surface.u_first;
 
   // Trim rows, unwrapped and closed on themselves for a loop.
@@ -159,7 +179,8 @@ RoundMeshStats mesh_rounding_surface(const RoundingSurface& surface, const std::
     }
     return out;
   };
-  std::vector<double> U = row_samples(us, 1.0);
+  // With an element length the inner rows are evenly spaced at it (the trim lines' points do not set them).
+  std::vector<double> U = row_samples(controls.element_length > 0 ? std::vector<double>{} : us, 1.0);
   // A carried end's straight piece (loft_profiles) is as long on each row as that row's point moves to the
   // end face: from nothing beside a contact that meets the face where the balls stop, to the setback. Each
   // inner row spaces its own points there, as the step beyond; a row whose piece is shorter than half a step

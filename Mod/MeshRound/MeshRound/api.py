@@ -65,7 +65,7 @@ class RoundingResult:
 
 
 def round_edges(mesh, seeds, radius, tolerance=None, feature_angle=30.0, reach=3.0, max_new_facets=None,
-                cancel=None, thickness=None, tool="die", k=None):
+                cancel=None, thickness=None, tool="die", k=None, band=None):
     """Round the sharp-edge chains of `mesh` that pass nearest to `seeds`.
 
     mesh: Mesh.Mesh (not modified).  seeds: a Vector, an (x, y, z) triple, or a list of them; each picks
@@ -78,13 +78,16 @@ def round_edges(mesh, seeds, radius, tolerance=None, feature_angle=30.0, reach=3
     (a token cancelled before the call is refused at once).  thickness: the sheet thickness t in mm, for
     the stamping rule radius >= k.t (radius_limits.check_rules, tool "die" or "punch", k overriding its
     factors); given, the report gets "rules": one check_rules row per chain (flags "below_k_t"; a variable
-    radius is checked by its smallest); None: no such entry.  Returns a RoundingResult; raises
-    RoundingError.
+    radius is checked by its smallest); None: no such entry.  band: the band's element controls, a dict
+    of any of max_element_angle (degrees of the profile per element across the round, e.g. 10),
+    element_length (mm along the round; default the input's own) and max_aspect_ratio (longest / shortest
+    side, >= 1), each None or 0 = off; the report's "band_quality" gives what was made (smallest and
+    largest angle, aspect ratio, shortest side).  Returns a RoundingResult; raises RoundingError.
     """
     started = time.perf_counter()
     check_cancelled(cancel)
     inputs.check_mesh(mesh)
-    arguments = _engine_arguments(seeds, radius, tolerance, feature_angle, reach, max_new_facets, cancel)
+    arguments = _engine_arguments(seeds, radius, tolerance, feature_angle, reach, max_new_facets, cancel, band)
     rule_radius = _rule_radius(radius, thickness, tool, k)  # bad rule arguments are refused before the work
     vertices, triangles = meshconv.mesh_to_arrays(mesh)
     read = time.perf_counter()
@@ -123,13 +126,13 @@ def _rule_radius(radius, thickness, tool, k):
 
 
 def round_arrays(vertices, triangles, seeds, radius, tolerance=None, feature_angle=30.0, reach=3.0,
-                 max_new_facets=None, cancel=None):
+                 max_new_facets=None, cancel=None, band=None):
     """round_edges for a mesh given as vertices (n, 3) and triangles (m, 3); result.mesh is built lazily."""
     started = time.perf_counter()
     check_cancelled(cancel)
     if len(triangles) == 0:
         raise RoundingError("mesh is empty: it has no facets")
-    arguments = _engine_arguments(seeds, radius, tolerance, feature_angle, reach, max_new_facets, cancel)
+    arguments = _engine_arguments(seeds, radius, tolerance, feature_angle, reach, max_new_facets, cancel, band)
     result = _round(vertices, triangles, arguments)
     result.report["seconds"] = time.perf_counter() - started
     return result
@@ -210,7 +213,7 @@ def plan_arrays(vertices, triangles, seeds, radius, tolerance=None, feature_angl
     return NetworkPlan(wires, corners, found["refusal"])
 
 
-def _engine_arguments(seeds, radius, tolerance, feature_angle, reach, max_new_facets=None, cancel=None):
+def _engine_arguments(seeds, radius, tolerance, feature_angle, reach, max_new_facets=None, cancel=None, band=None):
     """Keyword arguments for core.round_edges, every one checked."""
     largest_radius, law = inputs.radius_and_law(radius)
     if max_new_facets is not None and (isinstance(max_new_facets, bool) or not isinstance(max_new_facets, int) or max_new_facets < 1):
@@ -225,6 +228,7 @@ def _engine_arguments(seeds, radius, tolerance, feature_angle, reach, max_new_fa
         radius_law=law,
         max_new_facets=int(max_new_facets or 0),  # 0: the engine's default
         cancel=cancel,
+        band=inputs.band_value(band),
     )
 
 

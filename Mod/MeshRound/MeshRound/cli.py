@@ -102,6 +102,15 @@ def build_parser():
     rnd.add_argument("--reach", metavar="K", type=_finite, default=3.0,
                      help="re-mesh facets within K x radius of a chain (default 3)")
     rnd.add_argument("--report", metavar="FILE", help="write the rounding report as JSON")
+    band = rnd.add_argument_group("band elements (each off by default; the finer rule wins)")
+    band.add_argument("--element-angle", metavar="DEG", type=_finite, default=None,
+                      help="at most DEG degrees of the round's profile per element across it (e.g. 10)")
+    band.add_argument("--element-length", metavar="L", type=_finite, default=None,
+                      help="element length along the round in mm (default: the input's own next to the edge)")
+    band.add_argument("--max-aspect", metavar="X", type=_finite, default=None,
+                      help="largest aspect ratio (longest / shortest side) of the round's elements, >= 1")
+    band.add_argument("--triangles", action="store_true",
+                      help="solver decks: write the band as triangles only (default: quads where they pair)")
     rnd.add_argument("--part", metavar="PID", type=int, default=None,
                      help="solver decks: round only this part's shells (LS-DYNA/Nastran PID; Abaqus: the "
                           "ELSET's number in order of appearance); other parts are kept as they are")
@@ -168,8 +177,24 @@ def check_options(parser, args):
         inputs.check_options(radius=args.radius if args.radius is not None else 1.0,
                              tolerance=args.tolerance or 0.0, feature_angle=args.feature_angle,
                              reach=args.reach, radius_law=law)
+        if hasattr(args, "element_angle"):
+            inputs.band_value(band_controls(args))
     except MeshRound.RoundingError as exc:
         parser.error(str(exc))
+
+
+def band_controls(args):
+    """The band element controls of the command line, as round_edges' band argument."""
+    return dict(max_element_angle=args.element_angle, element_length=args.element_length,
+                max_aspect_ratio=args.max_aspect)
+
+
+def quality_line(q):
+    """One line on the band's elements as CAE checks them (report["band_quality"] or a deck's quality)."""
+    warp = f", warpage <= {q['max_warpage_deg']:.1f} deg" if q.get("quads") else ""
+    return (f"band elements: {q['elements']} ({q.get('quads', 0)} quads), angles {q['min_angle_deg']:.1f}-"
+            f"{q['max_angle_deg']:.1f} deg, aspect ratio <= {q['max_aspect_ratio']:.2f}{warp}, "
+            f"shortest side {q['min_side']:.3f} mm")
 
 
 # ------------------------------------------------------------------------------ the commands
@@ -181,7 +206,7 @@ def run_round(args):
     radius = args.radius if args.radius is not None else args.radius_at
     try:
         result = MeshRound.round_edges(mesh, args.seed, radius, tolerance=args.tolerance,
-                                       feature_angle=args.feature_angle, reach=args.reach)
+                                       feature_angle=args.feature_angle, reach=args.reach, band=band_controls(args))
     except MeshRound.RoundingError as exc:
         raise Failure(f"rounding failed [{getattr(exc, 'code', 'invalid_input')}]: {exc}") from exc
     _write_result(args, result)
@@ -190,6 +215,7 @@ def run_round(args):
     deviation = f"{deviation:.4f} mm" if isinstance(deviation, (int, float)) else "unknown"
     print(f"meshround: {r.get('chains')} chain(s) rounded, {r.get('facets_in')} -> {r.get('facets_out')} "
           f"facets, max deviation {deviation}, {r.get('seconds', 0.0):.2f} s -> {args.output}")
+    print(f"meshround: {quality_line(r['band_quality'])}")
     note = MeshRound.quality_note(r)
     if note:
         print(f"meshround: {note}", file=sys.stderr)
@@ -198,10 +224,13 @@ def run_round(args):
 def run_round_deck(args):
     """IN and OUT solver decks: MeshRound.round_deck (it writes OUT itself, all or nothing)."""
     _, MeshRound = _import_freecad()
+    from MeshRound.decks import QuadOptions
     radius = args.radius if args.radius is not None else args.radius_at
     try:
         res = MeshRound.round_deck(args.input, args.output, args.seed, radius, part=args.part,
-                                   tolerance=args.tolerance, feature_angle=args.feature_angle, reach=args.reach)
+                                   tolerance=args.tolerance, feature_angle=args.feature_angle, reach=args.reach,
+                                   band=band_controls(args),
+                                   quad_options=QuadOptions(quads=False) if args.triangles else None)
     except MeshRound.RoundingError as exc:
         raise Failure(f"rounding failed [{getattr(exc, 'code', 'invalid_input')}]: {exc}") from exc
     except OSError as exc:
@@ -214,6 +243,7 @@ def run_round_deck(args):
           f"{d['elements_in']} elements replaced by {d['new_quads']} quads and {d['new_triangles']} triangles, "
           f"{d['nodes_new']} new nodes, {len(d['sets_updated'])} set(s) updated, "
           f"{res.report.get('seconds', 0.0):.2f} s -> {', '.join(res.paths)}")
+    print(f"meshround: {quality_line(d['quality'])}")
 def run_radius_tool(args):
     """max-radius and sweep (cli_radius.py)."""
     from . import cli_radius

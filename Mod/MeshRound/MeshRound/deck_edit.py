@@ -18,7 +18,7 @@ new nodes, new elements, sets with new members) and a summary for the report.
 """
 import numpy as np
 
-from .errors import RoundingError
+from .errors import RoundingError, require_core
 
 _CHUNK = 256  # rows per block of the nearest-point search (memory: CHUNK x targets x 3 doubles)
 
@@ -78,6 +78,8 @@ def edits_for(arrays, vertices, triangles, tri_shell, vertex_node, result, quad_
         "node_ids": [int(first_node), int(first_node + len(new_vertices) - 1)] if len(new_vertices) else [],
         "element_ids": [int(first_element), int(element_ids[-1])] if len(elements) else [],
         "sets_updated": [int(i) for i, _ in set_members],
+        # The new elements as CAE checks them (angles, aspect ratio, quads' warpage, shortest side).
+        "quality": require_core().element_quality(out_v, elements),
     }
     return edits, summary
 
@@ -266,11 +268,11 @@ def _set_updates(arrays, removed, new):
             nearest[kind] = (gone[_nearest(made_at, gone_at)], made[_nearest(gone_at, made_at)])
     updates = []
     for index, s in enumerate(arrays["sets"]):
-        kind = "nodes" if s["of_nodes"] else "elements"
-        members = np.asarray(s["members"], np.int64)
         if not s.get("kind_known", True):
             _refuse_if_touched(arrays, s, removed)
             continue
+        kind = "nodes" if s["of_nodes"] else "elements"
+        members = np.asarray(s["members"], np.int64)
         held = np.isin(members, removed[kind][0])
         if not np.any(held):
             continue

@@ -5,7 +5,8 @@
     res = MeshRound.export_deck(rounding, "die_r5.k")             # decks.DeckRoundingResult of the last stage
 
 The Roundings from the Deck up to `rounding` are applied to the deck file in turn with decks.round_deck,
-each with the feature's own Seeds, Radius or radius law, Tolerance, FeatureAngle and Reach; the decks in
+each with the feature's own Seeds, Radius or radius law, Tolerance, FeatureAngle, Reach and band element
+controls (ElementAngle, ElementLength, MaxAspectRatio); the decks in
 between go to a temporary folder.  So the deck written is exactly what round_deck writes: every line, ID,
 part and set outside the rounds kept byte for byte (README, "Solver decks").  Refused with RoundingError
 (code invalid_input, nothing written): an object that is not a Rounding, a Rounding whose Base chain does
@@ -92,7 +93,7 @@ def export_deck(rounding, out_path, quad_options=None):
                 result = decks.round_deck(source, target, list(obj.Seeds), _radius(obj),
                                           tolerance=obj.Tolerance.Value or None,
                                           feature_angle=obj.FeatureAngle.Value, reach=obj.Reach,
-                                          quad_options=quad_options, cancel=token)
+                                          quad_options=quad_options, cancel=token, band=_band(obj))
             stages.append(result.report["deck"])
             source = target
     result.report["export_stages"] = stages
@@ -102,3 +103,8 @@ def export_deck(rounding, out_path, quad_options=None):
 def _radius(obj):
     from .objects.rounding import radius_argument
     return radius_argument(obj)
+
+
+def _band(obj):
+    from .objects.rounding import band_argument
+    return band_argument(obj)

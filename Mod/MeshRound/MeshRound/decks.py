@@ -153,11 +153,12 @@ def orient(triangles):
 
 def round_deck(in_path, out_path, seeds, radius, part=None, tolerance=None, feature_angle=30.0, reach=3.0,
                quad_options=None, node_id_start=None, element_id_start=None, keep_unused_nodes=False,
-               cancel=None):
+               cancel=None, band=None):
     """Round the sharp-edge chains nearest to `seeds` in the deck at in_path and write the deck to out_path
     (same format family, by extension).  part: a part ID (LS-DYNA/Nastran PID, Abaqus: the index of the
     ELSET in read_deck()["parts"]) to round alone; the other parts are kept as they are.  Other arguments as
-    round_edges.  Returns DeckRoundingResult; raises RoundingError (nothing written)."""
+    round_edges (band: the band's element controls).  report["deck"]["quality"]: the new elements' quality.
+    Returns DeckRoundingResult; raises RoundingError (nothing written)."""
     from . import deck_edit  # the mesh -> elements step (kept apart: one file per pass)
     stamps = [_stamp()]
     _check_extension(out_path)
@@ -169,7 +170,7 @@ def round_deck(in_path, out_path, seeds, radius, part=None, tolerance=None, feat
     vertices, triangles, tri_shell, vertex_node = deck_triangles(arrays, part)
     stamps.append(_stamp())
     result = api.round_arrays(vertices, triangles, seeds, radius, tolerance=tolerance, feature_angle=feature_angle,
-                              reach=reach, cancel=cancel)
+                              reach=reach, cancel=cancel, band=band)
     stamps.append(_stamp())
     edits, summary = deck_edit.edits_for(arrays, vertices, triangles, tri_shell, vertex_node, result,
                                          quad_options or QuadOptions(), node_id_start, element_id_start,

@@ -88,11 +88,31 @@ def reach_value(reach):
     return float(reach)
 
 
-def check_options(radius=1.0, tolerance=0.0, feature_angle=30.0, reach=3.0, radius_law=None):
+# The band element controls (RoundOptions in cpp_core/include/meshround/options.h, where their defaults and
+# meanings are written): the keywords round_edges, round_deck and the CLI take, each 0 or None = off.
+BAND_CONTROLS = ("max_element_angle", "element_length", "max_aspect_ratio")
+
+
+def band_value(band):
+    """The engine's band dict from None or a mapping of BAND_CONTROLS to numbers (None/0: off); checked
+    by the engine's rule."""
+    if band is None:
+        return None
+    if not hasattr(band, "items"):
+        raise RoundingError(f"band must be a dict of element controls {BAND_CONTROLS}, got {type(band).__name__}")
+    unknown = sorted(set(band) - set(BAND_CONTROLS))
+    if unknown:
+        raise RoundingError(f"unknown band element control(s) {unknown}; known: {list(BAND_CONTROLS)}")
+    values = {k: _number(k, v) for k, v in band.items() if v is not None}
+    check_options(band=values)
+    return values or None
+
+
+def check_options(radius=1.0, tolerance=0.0, feature_angle=30.0, reach=3.0, radius_law=None, band=None):
     """RoundingError (invalid_input) naming the option out of range, by the engine's own rule."""
     require_core().validate_options(radius=float(radius), tolerance=float(tolerance),
                                     feature_angle=float(feature_angle), reach=float(reach),
-                                    radius_law=radius_law)
+                                    radius_law=radius_law, band=band)
 
 
 def _number(name, value):

@@ -23,6 +23,13 @@ struct RoundOptions {
   double tolerance = 0.0;              // chordal tolerance of the new facets; <= 0 means r_max / 100
   double feature_angle_deg = 30.0;     // an edge is sharp when its two facets turn by at least this
   double reach = 3.0;                  // base meshes are the facets within reach * r_max of the chain
+  // Band element controls, as CAE pre-processors give them; each 0 = off, and the finer rule wins
+  // (tessellate.h BandControls applies them):
+  double max_element_angle_deg = 0;    // the round's elements span at most this angle of its profile (e.g.
+                                       // 10: 9 elements across a 90 degree round); 0: the chordal tolerance alone
+  double element_length = 0;           // element length along the round (mm); 0: the input's own next to the chain
+  double max_aspect_ratio = 0;         // the round's elements' longest side / shortest side, at most (>= 1); 0: the
+                                       // built-in bound (steps along 0.4 to kMaxStepRatio = 2.5 times the step across)
   // Work budget: a call that would make more new facets than this (profile stations count as facets)
   // is refused with work_limit before it runs away. 2,000,000 new facets is a few times the band of a
   // 1M-facet mesh's longest edges rounded at a tenth of their element size, and ~1 GB of work.

@@ -19,6 +19,7 @@
 #include <vector>
 
 #include "meshround/chain.h"
+#include "meshround/element_quality.h"
 #include "meshround/mesh_delta.h"
 #include "meshround/options.h"
 
@@ -82,6 +83,7 @@ struct RoundReport {
   int thin_facets_short_of_room = 0;   // of those, the ones on chains with a reach_for_room
   double reach_for_room = 0;           // the largest over chains (ChainReport)
   std::vector<CornerReport> corners;      // one per corner of the network, if any
+  ElementQuality band;                    // the new facets' quality as CAE checks it (element_quality.h)
   std::map<std::string, double> seconds;  // per pass, summed over chains
   double seconds_total = 0;
 };

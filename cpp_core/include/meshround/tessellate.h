@@ -10,6 +10,7 @@
 #include <functional>
 #include <vector>
 
+#include "meshround/options.h"
 #include "meshround/trim.h"
 
 namespace meshround {
@@ -32,16 +33,33 @@ struct SharedEnds {
   bool exact_end[2] = {false, false};
 };
 
-RoundMeshStats mesh_rounding_surface(const RoundingSurface& surface, const std::vector<ProfileStation>& stations,
-                                     const TrimLines& trim, double tolerance, MeshEdit& edit, const SharedEnds& shared = {});
+// The band element controls (RoundOptions) as the tessellation and the trim use them: the one place
+// their rules live.
+struct BandControls {
+  double max_angle = 0;       // radians of the profile per element across; 0: the chordal tolerance alone
+  double element_length = 0; // step along the round (mm); 0: the trim lines' own (the input's next to the chain)
+  double max_aspect = 0;      // steps along at most this times the step across, and the step across at most
+                              // this times element_length when that is given; 0: kMaxStepRatio along only
+  static BandControls of(const RoundOptions& options);
+  // The longest step along the round where the step across is `across`.
+  double longest_along(double across) const;
+  // The shortest step along the inner rows keep between samples (closer samples are thinned out).
+  double shortest_along(double across) const;
+};
 
-// Spacing across the profile (and the largest step along it) for a tolerance: the v levels' count.
-int profile_segments(const std::vector<ProfileStation>& stations, double tolerance);
+RoundMeshStats mesh_rounding_surface(const RoundingSurface& surface, const std::vector<ProfileStation>& stations,
+                                     const TrimLines& trim, double tolerance, const BandControls& controls, MeshEdit& edit,
+                                     const SharedEnds& shared = {});
+
+// Elements across the profile for a tolerance and the controls: the v levels' count.
+int profile_segments(const std::vector<ProfileStation>& stations, double tolerance, const BandControls& controls);
 
 // The step across the profile at u (local radius x opening angle / segments, interpolated between the
-// stations); steps along the round and its trim lines are at most kMaxStepRatio times this.
+// stations); steps along the round and its trim lines are at most BandControls::longest_along of this.
 double profile_step(const RoundingSurface& surface, const std::vector<ProfileStation>& stations, int segments, double u);
+// The built-in bounds of the steps along: between kMinStepRatio and kMaxStepRatio times the step across.
 constexpr double kMaxStepRatio = 2.5;
+constexpr double kMinStepRatio = 0.4;
 // Graded rows beside a trim line (at most kGradedRows a side) while its short steps are under
 // kGradedStep times the distance of the row beyond.
 constexpr int kGradedRows = 4;

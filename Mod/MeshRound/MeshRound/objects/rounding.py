@@ -12,6 +12,9 @@ Properties (group "Rounding"):
   Tolerance        App::PropertyLength      chordal tolerance, 0 = largest radius / 100
   FeatureAngle     App::PropertyAngle       an edge is sharp when its facets turn by at least this
   Reach            App::PropertyFloat       facets within Reach * r of a chain are re-meshed
+  ElementAngle     App::PropertyAngle       band elements: at most this angle of the profile each, 0 = off
+  ElementLength    App::PropertyLength      band elements: length along the round, 0 = the input's own
+  MaxAspectRatio   App::PropertyFloat       band elements: longest / shortest side at most, 0 = built-in
   Surfaces         App::PropertyLink        (read-only) the "RoundingSurfaces" Part::Feature child whose
                                             Shape is the compound of the rolling-ball faces (STEP export)
   Statistics       App::PropertyMap         (read-only output) the engine's report of the last recompute
@@ -41,6 +44,12 @@ PROPERTIES = [
     ("App::PropertyLength", "Tolerance", "Chordal tolerance of the new facets; 0 = radius / 100", 0.0),
     ("App::PropertyAngle", "FeatureAngle", "An edge is sharp when its facets turn by at least this", 30.0),
     ("App::PropertyFloat", "Reach", "Facets within Reach x radius of a chain are re-meshed", 3.0),
+    ("App::PropertyAngle", "ElementAngle", "Band elements: at most this angle of the round's profile per element "
+     "across it (e.g. 10); 0 = the chordal tolerance alone", 0.0),
+    ("App::PropertyLength", "ElementLength", "Band elements: element length along the round; 0 = the input's "
+     "own next to the edge", 0.0),
+    ("App::PropertyFloat", "MaxAspectRatio", "Band elements: largest longest/shortest side of the round's "
+     "elements (>= 1); 0 = the built-in bound", 0.0),
     ("App::PropertyLink", "Surfaces", "Part feature showing the rolling-ball surfaces", None),
     ("App::PropertyMap", "Statistics", "Report of the last recompute", None),
 ]
@@ -78,11 +87,14 @@ class Rounding:
         with busy(f"Rounding edges of {base.Label} (Esc cancels)") as token:
             result = api.round_edges(base.Mesh, list(obj.Seeds), radius_argument(obj),
                                      tolerance=obj.Tolerance.Value or None,
-                                     feature_angle=obj.FeatureAngle.Value, reach=obj.Reach, cancel=token)
+                                     feature_angle=obj.FeatureAngle.Value, reach=obj.Reach, cancel=token,
+                                     band=band_argument(obj))
         obj.Mesh = result.mesh
         surfaces_feature.update_surfaces(obj, result.surfaces)
-        obj.Statistics = {key: str(value) for key, value in result.report.items()
-                          if not isinstance(value, (dict, list))}  # the scalars; details stay in the API
+        statistics = {key: str(value) for key, value in result.report.items()
+                      if not isinstance(value, (dict, list))}  # the scalars; details stay in the API
+        statistics.update({f"band_{key}": str(value) for key, value in result.report["band_quality"].items()})
+        obj.Statistics = statistics
         note = api.quality_note(result.report)
         if note:  # in the report view, where a recompute's warnings go
             FreeCAD.Console.PrintWarning(f"{obj.Label}: {note}\n")
@@ -116,6 +128,12 @@ def radius_argument(obj):
     if points:
         return list(zip(points, radii))
     return obj.Radius.Value
+
+
+def band_argument(obj):
+    """The band element controls of the feature, as round_edges' band argument."""
+    return dict(max_element_angle=obj.ElementAngle.Value, element_length=obj.ElementLength.Value,
+                max_aspect_ratio=obj.MaxAspectRatio)
 
 
 def make_rounding(base, seeds, radius, tolerance=0, feature_angle=30, reach=3, name="Rounding",
