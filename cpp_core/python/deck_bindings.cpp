@@ -27,8 +27,9 @@ py::dict deck_arrays(const Deck& d) {
   out["format"] = deck_format_name(d.format);
   out["node_ids"] = column_of<long long>(n, [&](size_t i) { return d.nodes[i].id; });
   py::array_t<double> xyz({py::ssize_t(n), py::ssize_t(3)});
+  double* p = xyz.mutable_data();
   for (size_t i = 0; i < n; ++i)
-    for (int k = 0; k < 3; ++k) xyz.mutable_at(i, k) = d.nodes[i].xyz[k];
+    for (int k = 0; k < 3; ++k) p[3 * i + k] = d.nodes[i].xyz[k];
   out["node_xyz"] = xyz;
   out["node_file"] = column_of<int>(n, [&](size_t i) { return d.nodes[i].file; });
   out["node_line"] = column_of<int>(n, [&](size_t i) { return d.nodes[i].line + 1; });
@@ -40,8 +41,9 @@ py::dict deck_arrays(const Deck& d) {
   out["node_span"] = column_of<int>(n, [&](size_t i) { return d.nodes[i].lines; });     // lines per record
   out["shell_span"] = column_of<int>(m, [&](size_t i) { return d.shells[i].lines; });
   py::array_t<long long> index({py::ssize_t(m), py::ssize_t(4)}), ids({py::ssize_t(m), py::ssize_t(4)});
+  long long *pi = index.mutable_data(), *pd = ids.mutable_data();
   for (size_t i = 0; i < m; ++i)
-    for (int k = 0; k < 4; ++k) index.mutable_at(i, k) = d.shells[i].node_index[k], ids.mutable_at(i, k) = d.shells[i].nodes[k];
+    for (int k = 0; k < 4; ++k) pi[4 * i + k] = d.shells[i].node_index[k], pd[4 * i + k] = d.shells[i].nodes[k];
   out["shell_nodes"] = index;      // indices into node_ids (-1: a triangle's 4th)
   out["shell_node_ids"] = ids;     // the IDs (0: a triangle's 4th)
   py::list parts, sets, files;

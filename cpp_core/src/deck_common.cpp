@@ -4,9 +4,8 @@
 #include <cctype>
 #include <charconv>
 #include <cstring>
-#include <fstream>
-#include <sstream>
-#include <unordered_map>
+#include <cmath>
+#include <cstdio>
 
 #include "deck_text.h"
 
@@ -46,13 +45,6 @@ void refuse(const DeckFile& f, int line, const std::string& reason) {
   throw RoundingError(ErrorCode::InvalidInput, f.path + ":" + std::to_string(line + 1) + ": " + reason);
 }
 
-std::string_view trim(std::string_view s) {
-  size_t a = 0, b = s.size();
-  while (a < b && (s[a] == ' ' || s[a] == '\t')) ++a;
-  while (b > a && (s[b - 1] == ' ' || s[b - 1] == '\t')) --b;
-  return s.substr(a, b - a);
-}
-
 std::string upper(std::string_view s) {
   std::string out(s);
   for (char& c : out) c = char(std::toupper(static_cast<unsigned char>(c)));
@@ -71,8 +63,8 @@ std::string_view column(std::string_view line, size_t start, size_t width) {
   return line.substr(start, std::min(width, line.size() - start));
 }
 
-std::vector<std::string_view> split_commas(std::string_view line) {
-  std::vector<std::string_view> out;
+void split_commas(std::string_view line, std::vector<std::string_view>& out) {
+  out.clear();
   size_t a = 0;
   for (;;) {
     size_t c = line.find(',', a);
@@ -80,6 +72,11 @@ std::vector<std::string_view> split_commas(std::string_view line) {
     if (c == std::string_view::npos) break;
     a = c + 1;
   }
+}
+
+std::vector<std::string_view> split_commas(std::string_view line) {
+  std::vector<std::string_view> out;
+  split_commas(line, out);
   return out;
 }
 
@@ -90,6 +87,17 @@ bool parse_int(std::string_view s, long long& out, bool blank_ok, long long blan
     return blank_ok;
   }
   if (s[0] == '+') s.remove_prefix(1);
+  // The usual field: up to 18 digits (no overflow), optionally after a minus, read here.
+  const size_t sign = !s.empty() && s[0] == '-' ? 1 : 0;
+  if (s.size() > sign && s.size() - sign <= 18) {
+    long long v = 0;
+    size_t i = sign;
+    for (; i < s.size() && s[i] >= '0' && s[i] <= '9'; ++i) v = v * 10 + (s[i] - '0');
+    if (i == s.size()) {
+      out = sign ? -v : v;
+      return true;
+    }
+  }
   auto [p, ec] = std::from_chars(s.data(), s.data() + s.size(), out);
   return ec == std::errc() && p == s.data() + s.size();
 }
@@ -99,6 +107,14 @@ bool parse_real(std::string_view s, double& out, bool nastran) {
   if (s.empty()) {
     out = 0.0;
     return true;
+  }
+  // The usual field (no D exponent, no implied one) is read in place.
+  bool plain = !nastran;
+  for (size_t i = 0; plain && i < s.size(); ++i) plain = s[i] != 'd' && s[i] != 'D' && s[i] != ' ';
+  if (plain) {
+    const char* b = s.data() + (s[0] == '+' ? 1 : 0);
+    auto [p, ec] = std::from_chars(b, s.data() + s.size(), out);
+    return ec == std::errc() && p == s.data() + s.size() && std::isfinite(out);
   }
   // At most 40 characters, each of which may gain an implied 'e' before it: 80 at most.
   constexpr size_t kMaxChars = 40;
@@ -157,37 +173,34 @@ std::string lower_extension(const std::string& path) {
 
 std::string where(const Deck& d, int file, int line) { return d.files[file].path + ":" + std::to_string(line + 1); }
 
-// Unique node and shell IDs; every shell's nodes defined (node_index filled); parts referenced by shells
-// listed (LS-DYNA and Nastran decks may define a part in a file the reader does not see).
+// Unique node and shell IDs (Deck::node_by_id, shell_by_id); every shell's nodes defined (node_index
+// filled); parts referenced by shells listed (LS-DYNA and Nastran decks may define a part in a file the
+// reader does not see).
 void check_and_index(Deck& d) {
-  std::unordered_map<long long, int> node_at;
-  node_at.reserve(d.nodes.size() * 2);
-  for (int i = 0; i < int(d.nodes.size()); ++i) {
-    const DeckNode& n = d.nodes[i];
-    auto [it, fresh] = node_at.emplace(n.id, i);
-    if (!fresh) {
-      const DeckNode& o = d.nodes[it->second];
-      refuse(d.files[n.file], n.line, "node " + std::to_string(n.id) + " is defined twice (also at " + where(d, o.file, o.line) + ")");
-    }
-    d.max_node_id = std::max(d.max_node_id, n.id);
+  std::vector<long long> ids(d.nodes.size());
+  for (size_t i = 0; i < d.nodes.size(); ++i) ids[i] = d.nodes[i].id, d.max_node_id = std::max(d.max_node_id, ids[i]);
+  if (auto [i, j] = d.node_by_id.build(ids); i >= 0) {
+    const DeckNode &n = d.nodes[i], &o = d.nodes[j];
+    refuse(d.files[n.file], n.line, "node " + std::to_string(n.id) + " is defined twice (also at " + where(d, o.file, o.line) + ")");
   }
-  std::unordered_map<long long, int> shell_at;
-  shell_at.reserve(d.shells.size() * 2);
+  ids.resize(d.shells.size());
+  for (size_t i = 0; i < d.shells.size(); ++i) ids[i] = d.shells[i].id;
+  // Shells in order: a twice-defined ID is named before a missing node of a later shell, as before.
+  const auto [twice, first] = d.shell_by_id.build(ids);
   for (int i = 0; i < int(d.shells.size()); ++i) {
     DeckShell& s = d.shells[i];
-    auto [it, fresh] = shell_at.emplace(s.id, i);
-    if (!fresh) {
-      const DeckShell& o = d.shells[it->second];
+    if (i == twice) {
+      const DeckShell& o = d.shells[first];
       refuse(d.files[s.file], s.line, "element " + std::to_string(s.id) + " is defined twice (also at " + where(d, o.file, o.line) + ")");
     }
     d.max_element_id = std::max(d.max_element_id, s.id);
     for (int k = 0; k < 4; ++k) {
       s.node_index[k] = -1;
       if (k >= s.count) continue;
-      auto n = node_at.find(s.nodes[k]);
-      if (n == node_at.end())
+      const int n = d.node_by_id.find(s.nodes[k]);
+      if (n < 0)
         refuse(d.files[s.file], s.line, "element " + std::to_string(s.id) + " refers to node " + std::to_string(s.nodes[k]) + ", which the deck does not define");
-      s.node_index[k] = n->second;
+      s.node_index[k] = n;
     }
   }
   std::vector<long long> known;
@@ -201,6 +214,43 @@ void check_and_index(Deck& d) {
 }
 
 }  // namespace
+
+std::pair<int, int> IdIndex::build(const std::vector<long long>& ids) {
+  count_ = ids.size();
+  table_.clear(), sorted_.clear();
+  if (ids.empty()) return {-1, -1};
+  const auto [lo, hi] = std::minmax_element(ids.begin(), ids.end());
+  const unsigned long long span = static_cast<unsigned long long>(*hi) - static_cast<unsigned long long>(*lo);
+  if (span <= 2 * ids.size() + 1024) {  // dense: at most ~2 slots per record
+    first_ = *lo;
+    table_.assign(span + 1, -1);
+    for (int i = 0; i < int(ids.size()); ++i) {
+      int& slot = table_[size_t(ids[i] - first_)];
+      if (slot >= 0) return {i, slot};
+      slot = i;
+    }
+    return {-1, -1};
+  }
+  sorted_.resize(ids.size());
+  for (int i = 0; i < int(ids.size()); ++i) sorted_[i] = {ids[i], i};
+  std::sort(sorted_.begin(), sorted_.end());
+  // Within an ID the records are in order, so the smallest record that is not its ID's first is a second
+  // occurrence, and the one before it in sorted_ that ID's first.
+  std::pair<int, int> twice{-1, -1};
+  for (size_t k = 1; k < sorted_.size(); ++k)
+    if (sorted_[k].first == sorted_[k - 1].first && (twice.first < 0 || sorted_[k].second < twice.first))
+      twice = {sorted_[k].second, sorted_[k - 1].second};
+  return twice;
+}
+
+int IdIndex::find(long long id) const {
+  if (!sorted_.empty()) {
+    auto it = std::lower_bound(sorted_.begin(), sorted_.end(), std::make_pair(id, -1));
+    return it != sorted_.end() && it->first == id ? it->second : -1;
+  }
+  if (table_.empty() || id < first_ || static_cast<unsigned long long>(id - first_) >= table_.size()) return -1;
+  return table_[size_t(id - first_)];
+}
 
 DeckFormat deck_format_for(const std::string& path) {
   const std::string ext = lower_extension(path);
@@ -223,6 +273,11 @@ Deck parse_deck(const std::string& path, std::string text, DeckFormat format, co
   Deck d;
   d.format = format;
   d.files.push_back(make_file(path, std::move(text)));
+  // At most one record per line: reserved (address space only; pages are taken as records fill them), so
+  // the vectors are not copied as they grow -- each copy touches fresh memory, and page faults were a
+  // third of a big deck's read.
+  d.nodes.reserve(size_t(d.files[0].lines()));
+  d.shells.reserve(size_t(d.files[0].lines()));
   Reader r{d, load};
   switch (format) {
     case DeckFormat::LsDyna: read_lsdyna(r, 0); break;
@@ -235,12 +290,21 @@ Deck parse_deck(const std::string& path, std::string text, DeckFormat format, co
 
 namespace {
 bool load_file(const std::string& path, std::string& text) {
-  std::ifstream in(path, std::ios::binary);
+  std::FILE* in = std::fopen(path.c_str(), "rb");
   if (!in) return false;
-  std::ostringstream buf;
-  buf << in.rdbuf();
-  text = buf.str();
-  return !in.bad();
+  text.clear();
+  bool ok = std::fseek(in, 0, SEEK_END) == 0;
+  const long size = ok ? std::ftell(in) : -1;
+  if (size > 0 && std::fseek(in, 0, SEEK_SET) == 0) {  // a regular file: read at once
+    text.resize(size_t(size));
+    text.resize(std::fread(text.data(), 1, text.size(), in));
+  }
+  char buf[1 << 16];  // what is left (a file that grew, or one that cannot seek: a pipe)
+  if (size < 0) std::clearerr(in);
+  for (size_t n; (n = std::fread(buf, 1, sizeof buf, in)) > 0;) text.append(buf, n);
+  ok = !std::ferror(in);
+  std::fclose(in);
+  return ok;
 }
 }  // namespace
 

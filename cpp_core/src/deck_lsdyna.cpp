@@ -27,10 +27,15 @@ Widths widths(FieldStyle s) {
 // *ELEMENT_ cards: 8 columns per field (standard), 20 (long), 10 (i10).
 size_t shell_width(FieldStyle s) { return s == FieldStyle::Fixed ? 8 : widths(s).general; }
 
-// Splits a data line into fields: commas if it has any, else columns of `first` then `rest` width.
-std::vector<std::string_view> fields(std::string_view line, size_t count, size_t first, size_t rest) {
-  if (line.find(',') != std::string_view::npos) return split_commas(line);
-  std::vector<std::string_view> out;
+// Splits a data line into `out` (reused from line to line): commas if it has any, else columns of `first`
+// then `rest` width.
+const std::vector<std::string_view>& fields(std::string_view line, bool comma, size_t count, size_t first, size_t rest,
+                                            std::vector<std::string_view>& out) {
+  if (comma) {
+    split_commas(line, out);
+    return out;
+  }
+  out.clear();
   size_t at = 0;
   for (size_t k = 0; k < count && at < line.size(); ++k) {
     const size_t w = k == 0 ? first : rest;
@@ -57,7 +62,13 @@ struct LsReader {
   int set_state = 0;        // 0 title next (TITLE), 1 header next, 2 data
   int set = -1;             // the set being read
   bool set_title = false;
+  std::vector<std::string_view> buffer;  // the fields of the line being read
+  bool comma = false;                    // ... and whether it is comma-separated
 
+  const std::vector<std::string_view>& fields(std::string_view line, size_t count, size_t first, size_t rest) {
+    comma = line.find(',') != std::string_view::npos;
+    return decktext::fields(line, comma, count, first, rest, buffer);
+  }
   const DeckFile& f() const { return r.deck.files[file]; }
   Deck& d() { return r.deck; }
 
@@ -149,14 +160,14 @@ void LsReader::keyword(std::string_view text, int line) {
 
 void LsReader::node(std::string_view text, int line) {
   const Widths w = widths(style);
-  const auto fs = fields(text, 4, w.id, w.real);
+  const auto& fs = fields(text, 4, w.id, w.real);
   DeckNode n;
   n.id = need_int(field(fs, 0), line, "node ID");
   if (n.id <= 0) refuse(f(), line, "node ID must be positive, got " + std::to_string(n.id));
   for (int k = 0; k < 3; ++k)
     if (!parse_real(field(fs, 1 + k), n.xyz[k])) refuse(f(), line, "bad coordinate '" + std::string(field(fs, 1 + k)) + "'");
   n.file = file, n.line = line;
-  n.style = text.find(',') != std::string_view::npos ? FieldStyle::Free : style;
+  n.style = comma ? FieldStyle::Free : style;
   d().nodes.push_back(n);
 }
 
@@ -166,7 +177,7 @@ void LsReader::shell(std::string_view text, int line) {
     ++d().shells.back().lines;
     return;
   }
-  const auto fs = fields(text, 6, shell_width(style), shell_width(style));
+  const auto& fs = fields(text, 6, shell_width(style), shell_width(style));
   DeckShell s;
   s.id = need_int(field(fs, 0), line, "element ID");
   s.part = need_int(field(fs, 1), line, "part ID");
@@ -177,7 +188,7 @@ void LsReader::shell(std::string_view text, int line) {
   s.count = (s.nodes[3] == 0 || s.nodes[3] == s.nodes[2]) ? 3 : 4;
   if (s.count == 3) s.nodes[3] = 0;
   s.file = file, s.line = line;
-  s.style = text.find(',') != std::string_view::npos ? FieldStyle::Free : style;
+  s.style = comma ? FieldStyle::Free : style;
   d().shells.push_back(s);
   pending = extra_cards;
 }
@@ -189,7 +200,7 @@ void LsReader::part(std::string_view text, int line) {
     return;
   }
   if (part_state != 1) return;
-  const auto fs = fields(text, 1, widths(style).general, widths(style).general);
+  const auto& fs = fields(text, 1, widths(style).general, widths(style).general);
   DeckPart p;
   p.id = need_int(field(fs, 0), line, "part ID");
   p.name = part_title;
@@ -212,7 +223,7 @@ void LsReader::set_line(std::string_view text, int line) {
     s.data_end = line + 1;
     return;
   }
-  const auto fs = fields(text, 8, w, w);
+  const auto& fs = fields(text, 8, w, w);
   if (text.find(',') != std::string_view::npos) s.style = FieldStyle::Free;
   std::vector<long long> ids;
   for (const auto& x : fs) {
@@ -238,12 +249,13 @@ void LsReader::run() {
   const int n = f().lines();
   for (int i = 0; i < n; ++i) {
     const std::string_view text = line_of(f(), i);
-    if (text.empty() || text[0] == '$') continue;
-    if (text[0] == '*') {
+    if (!text.empty() && text[0] == '$') continue;
+    if (!text.empty() && text[0] == '*') {
       keyword(text, i);
       continue;
     }
-    if (trim(text).empty()) continue;
+    // A blank line is no data, but where a *PART's title is due it is that title (left blank).
+    if (trim(text).empty() && !(ctx == Ctx::Part && part_state == 0)) continue;
     switch (ctx) {
       case Ctx::Node: node(text, i); break;
       case Ctx::Shell: shell(text, i); break;

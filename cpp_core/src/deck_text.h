@@ -20,13 +20,20 @@ std::string_view line_of(const DeckFile& f, int i);
 // invalid_input "<file>:<line>: <reason>" (line is 0-based here, printed 1-based).
 [[noreturn]] void refuse(const DeckFile& f, int line, const std::string& reason);
 
-std::string_view trim(std::string_view s);
+inline std::string_view trim(std::string_view s) {  // inline: called for every field
+  const char* a = s.data();
+  const char* b = a + s.size();
+  while (a < b && (*a == ' ' || *a == '\t')) ++a;
+  while (b > a && (b[-1] == ' ' || b[-1] == '\t')) --b;
+  return std::string_view(a, size_t(b - a));
+}
 std::string upper(std::string_view s);
 bool starts_with_ci(std::string_view s, std::string_view prefix);  // case-insensitive
 // Columns [start, start + width) of a line (clipped to it, possibly empty).
 std::string_view column(std::string_view line, size_t start, size_t width);
 // Comma-separated fields (each trimmed).
 std::vector<std::string_view> split_commas(std::string_view line);
+void split_commas(std::string_view line, std::vector<std::string_view>& out);  // into out (no allocation once grown)
 
 // An integer field; blank is `blank` when allowed (blank_ok), else false. Rejects anything else.
 bool parse_int(std::string_view s, long long& out, bool blank_ok = false, long long blank = 0);

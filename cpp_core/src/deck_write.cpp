@@ -2,7 +2,6 @@
 // byte (deck.h).
 #include <algorithm>
 #include <map>
-#include <unordered_map>
 #include <unordered_set>
 
 #include "deck_text.h"
@@ -22,27 +21,31 @@ struct FileOut {
   std::map<int, std::string> after;    // line -> text written after it
 };
 
-std::unordered_map<long long, int> index_of(const std::vector<long long>& ids) {
-  std::unordered_map<long long, int> at;
-  at.reserve(ids.size() * 2);
-  for (int i = 0; i < int(ids.size()); ++i) at.emplace(ids[i], i);
-  return at;
+// The deck's index of `records` by ID (parse_deck makes it), or one made here for a deck made otherwise.
+template <class Record>
+const IdIndex& index_of(const std::vector<Record>& records, const IdIndex& made, IdIndex& local) {
+  if (made.size() == records.size()) return made;
+  std::vector<long long> ids;
+  ids.reserve(records.size());
+  for (const Record& r : records) ids.push_back(r.id);
+  local.build(ids);
+  return local;
 }
 
+// Marks the records of `ids` gone (by record index) and their lines dropped.
 template <class Record>
-void drop_records(const Deck& d, const std::vector<Record>& records, const std::vector<long long>& ids, const char* what,
-                  std::vector<FileOut>& out, std::unordered_set<long long>& gone) {
-  std::vector<long long> all;
-  all.reserve(records.size());
-  for (const Record& r : records) all.push_back(r.id);
-  const auto at = index_of(all);
+std::vector<char> drop_records(const Deck& d, const std::vector<Record>& records, const IdIndex& at,
+                               const std::vector<long long>& ids, const char* what, std::vector<FileOut>& out) {
+  std::vector<char> gone(records.size(), 0);
   for (long long id : ids) {
-    auto it = at.find(id);
-    if (it == at.end()) bad_edit(std::string("no ") + what + " " + std::to_string(id) + " to remove");
-    if (!gone.insert(id).second) continue;
-    const Record& r = records[it->second];
+    const int i = at.find(id);
+    if (i < 0) bad_edit(std::string("no ") + what + " " + std::to_string(id) + " to remove");
+    if (gone[i]) continue;
+    gone[i] = 1;
+    const Record& r = records[i];
     for (int k = 0; k < r.lines; ++k) out[r.file].drop[r.line + k] = 1;
   }
+  return gone;
 }
 
 std::string node_text(const Deck& d, const DeckNode& n, FieldStyle style, const std::string& eol) {
@@ -137,28 +140,33 @@ void rewrite_sets(const Deck& d, const DeckEdits& e, std::vector<FileOut>& out) 
 }
 
 // New IDs unused and positive; every element that stays or is new refers to nodes the deck will hold.
-void check_new_ids(const Deck& d, const DeckEdits& e, const std::unordered_set<long long>& removed_nodes,
-                   const std::unordered_set<long long>& removed_shells) {
-  for (const DeckShell& s : d.shells) {
-    if (removed_shells.count(s.id)) continue;
-    for (int k = 0; k < s.count; ++k)
-      if (removed_nodes.count(s.nodes[k]))
+// gone_nodes / gone_shells: by record index.
+void check_new_ids(const Deck& d, const DeckEdits& e, const IdIndex& node_at, const IdIndex& shell_at,
+                   const std::vector<char>& gone_nodes, const std::vector<char>& gone_shells) {
+  for (size_t i = 0; i < d.shells.size(); ++i) {
+    const DeckShell& s = d.shells[i];
+    if (gone_shells[i]) continue;
+    for (int k = 0; k < s.count; ++k) {
+      const int n = s.node_index[k] >= 0 ? s.node_index[k] : node_at.find(s.nodes[k]);
+      if (n >= 0 && gone_nodes[n])
         bad_edit("node " + std::to_string(s.nodes[k]) + " is removed but element " + std::to_string(s.id) + " keeps it");
+    }
   }
-  std::unordered_set<long long> nodes, elements;
-  for (const DeckNode& n : d.nodes) nodes.insert(n.id);
-  for (const DeckShell& s : d.shells) elements.insert(s.id);
+  std::unordered_set<long long> new_nodes, new_elements;
   for (const DeckNode& n : e.new_nodes) {
-    if (n.id <= 0 || !nodes.insert(n.id).second) bad_edit("new node ID " + std::to_string(n.id) + " is in use or not positive");
+    if (n.id <= 0 || node_at.find(n.id) >= 0 || !new_nodes.insert(n.id).second)
+      bad_edit("new node ID " + std::to_string(n.id) + " is in use or not positive");
     if (!n.xyz.allFinite()) bad_edit("new node " + std::to_string(n.id) + " has a non-finite coordinate");
   }
   for (const DeckShell& s : e.new_shells) {
-    if (s.id <= 0 || !elements.insert(s.id).second)
+    if (s.id <= 0 || shell_at.find(s.id) >= 0 || !new_elements.insert(s.id).second)
       bad_edit("new element ID " + std::to_string(s.id) + " is in use or not positive");
     if (s.count != 3 && s.count != 4) bad_edit("element " + std::to_string(s.id) + " must have 3 or 4 nodes");
-    for (int k = 0; k < s.count; ++k)
-      if (!nodes.count(s.nodes[k]) || removed_nodes.count(s.nodes[k]))
+    for (int k = 0; k < s.count; ++k) {
+      const int n = node_at.find(s.nodes[k]);
+      if (n >= 0 ? bool(gone_nodes[n]) : !new_nodes.count(s.nodes[k]))
         bad_edit("new element " + std::to_string(s.id) + " refers to node " + std::to_string(s.nodes[k]) + ", which the deck will not hold");
+    }
   }
 }
 
@@ -167,10 +175,12 @@ void check_new_ids(const Deck& d, const DeckEdits& e, const std::unordered_set<l
 std::vector<std::string> write_deck(const Deck& d, const DeckEdits& e) {
   std::vector<FileOut> out(d.files.size());
   for (size_t i = 0; i < d.files.size(); ++i) out[i].drop.assign(d.files[i].lines(), 0);
-  std::unordered_set<long long> gone_nodes, gone_shells;
-  drop_records(d, d.nodes, e.removed_nodes, "node", out, gone_nodes);
-  drop_records(d, d.shells, e.removed_shells, "element", out, gone_shells);
-  check_new_ids(d, e, gone_nodes, gone_shells);
+  IdIndex own_nodes, own_shells;
+  const IdIndex& node_at = index_of(d.nodes, d.node_by_id, own_nodes);
+  const IdIndex& shell_at = index_of(d.shells, d.shell_by_id, own_shells);
+  const auto gone_nodes = drop_records(d, d.nodes, node_at, e.removed_nodes, "node", out);
+  const auto gone_shells = drop_records(d, d.shells, shell_at, e.removed_shells, "element", out);
+  check_new_ids(d, e, node_at, shell_at, gone_nodes, gone_shells);
   if (!e.new_nodes.empty()) {
     if (d.nodes.empty()) bad_edit("the deck has no node record to place new nodes after");
     const DeckNode& last = d.nodes.back();
@@ -194,19 +204,26 @@ std::vector<std::string> write_deck(const Deck& d, const DeckEdits& e) {
     t.reserve(f.text.size() + 64);
     auto rep = o.replace.begin();
     auto aft = o.after.begin();
+    size_t run = 0;  // kept lines are copied in runs: text from `run` up to the line being looked at
     for (int l = 0; l < f.lines(); ++l) {
-      if (rep != o.replace.end() && rep->first == l) {
+      const bool replaced = rep != o.replace.end() && rep->first == l;
+      const bool inserted = aft != o.after.end() && aft->first == l;
+      if (!replaced && !o.drop[l] && !inserted) continue;  // stays in the run
+      t.append(f.text, run, f.line_start[l] - run);
+      run = f.line_start[l + 1];
+      if (replaced) {
         t += rep->second;
         ++rep;
       } else if (!o.drop[l]) {
         t.append(f.text, f.line_start[l], f.line_start[l + 1] - f.line_start[l]);
       }
-      if (aft != o.after.end() && aft->first == l) {
+      if (inserted) {
         if (!t.empty() && t.back() != '\n') t += f.eol;
         t += aft->second;
         ++aft;
       }
     }
+    t.append(f.text, run, f.text.size() - run);
   }
   return texts;
 }

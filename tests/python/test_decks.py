@@ -382,3 +382,40 @@ def test_real_public_nastran_deck_round_trips_and_rounds_like_occt(tmp_path):
     print(f"nx_2bars r=2: dev_out_to_ref {row['dev_out_to_ref']:.4f} r, dev_ref_to_out {row['dev_ref_to_out']:.4f} r, bound {bound:.4f} r; {d}")
     assert bound <= 0.0125  # r/100 + the yardstick's precision: the deck's bar is an exact box
     assert row["dev_out_to_ref"] <= bound and row["dev_ref_to_out"] <= bound, (row, bound)
+
+
+def _edge_defects(triangles):
+    edges = np.sort(np.concatenate([triangles[:, [0, 1]], triangles[:, [1, 2]], triangles[:, [2, 0]]]), axis=1)
+    _, counts = np.unique(edges, axis=0, return_counts=True)
+    return int(np.sum(counts == 1)), int(np.sum(counts > 2))
+
+
+def test_band_local_check_counts_the_whole_written_deck_and_refuses_a_bad_read_back(box, tmp_path, monkeypatch):
+    xyz, quads, faces, near, far, edge = box
+    open_box = np.flatnonzero(faces != 4)  # without its bottom: open edges before and after
+    path = deck_files.write_deck(str(tmp_path), "lsdyna_fixed", xyz, quads[open_box], faces[open_box],
+                                 np.searchsorted(open_box, near[np.isin(near, open_box)]), np.zeros(0, int), edge)
+    out = str(tmp_path / "out.k")
+    check = MeshRound.round_deck(path, out, [SEED], R).report["deck"]["check"]
+    before = _edge_defects(decks.deck_triangles(MeshRound.read_deck(path))[1])
+    after = _edge_defects(decks.deck_triangles(MeshRound.read_deck(out))[1])
+    assert before[0] > 0 and (check["open_edges_before"], check["nonmanifold_edges_before"]) == before
+    assert (check["open_edges_after"], check["nonmanifold_edges_after"]) == after
+    # A read-back that differs outside the band (a node moved) is refused, and nothing is written.
+    from MeshRound import deck_check
+
+    class Core:
+        def read_deck(self, p):
+            deck = core.read_deck(p)
+
+            class Moved:
+                def arrays(self):
+                    a = deck.arrays()
+                    a["node_xyz"][0, 0] += 1e-9
+                    return a
+            return Moved()
+    monkeypatch.setattr(deck_check, "require_core", Core)
+    os.remove(out)
+    with pytest.raises(MeshRound.RoundingError, match="node coordinates differ") as err:
+        MeshRound.round_deck(path, out, [SEED], R)
+    assert err.value.code == "result_invalid" and not os.path.exists(out)

@@ -126,14 +126,15 @@ def _rule_radius(radius, thickness, tool, k):
 
 
 def round_arrays(vertices, triangles, seeds, radius, tolerance=None, feature_angle=30.0, reach=3.0,
-                 max_new_facets=None, cancel=None, band=None):
-    """round_edges for a mesh given as vertices (n, 3) and triangles (m, 3); result.mesh is built lazily."""
+                 max_new_facets=None, cancel=None, band=None, arrays=True):
+    """round_edges for a mesh given as vertices (n, 3) and triangles (m, 3); result.mesh is built lazily
+    (arrays=False: result.vertices / triangles too, from result.delta, for a caller that uses the delta)."""
     started = time.perf_counter()
     check_cancelled(cancel)
     if len(triangles) == 0:
         raise RoundingError("mesh is empty: it has no facets")
     arguments = _engine_arguments(seeds, radius, tolerance, feature_angle, reach, max_new_facets, cancel, band)
-    result = _round(vertices, triangles, arguments)
+    result = _round(vertices, triangles, arguments, arrays=arrays)
     result.report["seconds"] = time.perf_counter() - started
     return result
 

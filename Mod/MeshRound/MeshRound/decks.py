@@ -17,8 +17,9 @@ rounded mesh is turned back into elements:
     hold the new elements/nodes that replace them (nearest removed one in the set); a Nastran SET1 whose
     IDs do not tell grids from elements refuses the rounding if it holds a removed ID;
   - nodes no element uses any more are removed (keep_unused_nodes=True keeps them).
-The written deck is read again and checked (IDs unique, no new open or non-manifold edge) before it
-replaces out_path; on any failure nothing is written.
+The written deck is read again and checked (IDs unique, every node defined, everything outside the band
+as in the input, no new open or non-manifold edge: deck_check.py) before it replaces out_path; on any
+failure nothing is written.
 """
 import dataclasses
 import os
@@ -70,9 +71,36 @@ def read_deck(path):
     return arrays
 
 
+@dataclasses.dataclass
+class ShellTriangles:
+    """The shells (of one part) as the engine's triangles (deck_triangles), and what round_deck needs of them."""
+    vertices: np.ndarray     # (k, 3): the nodes the shells use
+    triangles: np.ndarray    # (t, 3) into vertices, turned consistently (orient)
+    tri_shell: np.ndarray    # (t,): the shell (index into the deck's shells) of each triangle
+    vertex_node: np.ndarray  # (k,): the node (index) of each vertex
+    shells: np.ndarray       # the shells split, ascending: triangle i < len(shells) is shells[i]'s first
+    quads: np.ndarray        # ... and those of them that are quads: triangle len(shells) + j is quads[j]'s second
+    open_edges: int          # edges of one triangle, and of more than two (counted while orienting)
+    nonmanifold_edges: int
+
+    def of_shells(self, shells):
+        """The triangles of the given (split) shells, ascending: at the band's cost (both halves' lists are sorted)."""
+        shells = np.asarray(shells, np.int64)
+        first = np.searchsorted(self.shells, shells)
+        at = np.minimum(np.searchsorted(self.quads, shells), max(len(self.quads) - 1, 0))
+        second = len(self.shells) + at[self.quads[at] == shells] if len(self.quads) else np.zeros(0, np.int64)
+        return np.sort(np.concatenate([first, second]))
+
+
 def deck_triangles(arrays, part=None):
     """(vertices (k, 3), triangles (t, 3), tri_shell (t,), vertex_node (k,)): the shells (of one part) as
     triangles over the nodes they use; a quad is split on its shorter diagonal."""
+    split = shell_triangles(arrays, part)
+    return split.vertices, split.triangles, split.tri_shell, split.vertex_node
+
+
+def shell_triangles(arrays, part=None):
+    """deck_triangles as a ShellTriangles."""
     shells = np.arange(len(arrays["shell_ids"]))
     if part is not None:
         shells = shells[arrays["shell_parts"] == part]
@@ -82,38 +110,50 @@ def deck_triangles(arrays, part=None):
                                 code="invalid_input")
     if len(shells) == 0:
         raise RoundingError("the deck has no 3- or 4-node shell elements", code="invalid_input")
-    nodes = arrays["shell_nodes"][shells]
     xyz = arrays["node_xyz"]
-    quad = arrays["shell_counts"][shells] == 4
+    tri_nodes, quad = split_shells(arrays["shell_nodes"][shells], arrays["shell_counts"][shells], xyz)
+    used = np.zeros(len(xyz), bool)
+    used[tri_nodes.ravel()] = True
+    vertex_node = np.flatnonzero(used)
+    renumber = np.cumsum(used) - 1  # node index -> vertex index (for the nodes the shells use)
+    triangles, open_edges, nonmanifold = _orient(renumber[tri_nodes])
+    return ShellTriangles(xyz[vertex_node], triangles, np.concatenate([shells, shells[quad]]), vertex_node, shells,
+                          shells[quad], open_edges, nonmanifold)
+
+
+def split_shells(nodes, counts, xyz):
+    """Shells (rows of 4 node indices, counts 3 or 4) as triangles: each shell's first, then the quads'
+    (quad: counts == 4) second halves; a quad is split on its shorter diagonal."""
+    quad = counts == 4
     d02 = np.linalg.norm(xyz[nodes[:, 0]] - xyz[nodes[:, 2]], axis=1)
     d13 = np.linalg.norm(xyz[np.where(quad, nodes[:, 1], nodes[:, 0])] - xyz[np.where(quad, nodes[:, 3], nodes[:, 0])], axis=1)
     on13 = quad & (d13 < d02)
     first = np.where(on13[:, None], nodes[:, [0, 1, 3]], nodes[:, [0, 1, 2]])
     second = np.where(on13[:, None], nodes[:, [1, 2, 3]], nodes[:, [0, 2, 3]])[quad]
-    tri_nodes = np.concatenate([first, second])
-    tri_shell = np.concatenate([shells, shells[quad]])
-    used = np.zeros(len(xyz), bool)
-    used[tri_nodes.ravel()] = True
-    vertex_node = np.flatnonzero(used)
-    renumber = np.cumsum(used) - 1  # node index -> vertex index (for the nodes the shells use)
-    triangles = orient(renumber[tri_nodes])
-    return xyz[vertex_node], triangles, tri_shell, vertex_node
+    return np.concatenate([first, second]), quad
 
 
 def orient(triangles):
     """The triangles turned consistently across every edge two of them share (solver decks' shells often
     face either way; the engine needs one turn).  In each connected piece the turn most of its triangles
     have is kept.  A piece that cannot be turned consistently (a Moebius band) is left as it is."""
+    return _orient(triangles)[0]
+
+
+def _orient(triangles):
+    """(orient(triangles), open edges, non-manifold edges): the edge counts come with the edge sort."""
     t = np.asarray(triangles, np.int64)
     tail, head = t.ravel(), np.roll(t, -1, axis=1).ravel()
     key = np.minimum(tail, head) * (int(t.max()) + 1) + np.maximum(tail, head)
     order = np.argsort(key, kind="stable")
     k = key[order]
+    runs = np.diff(np.flatnonzero(np.r_[True, k[1:] != k[:-1], True]))  # how many triangles share each edge
+    defects = int(np.sum(runs == 1)), int(np.sum(runs > 2))
     pair = np.flatnonzero((k[1:] == k[:-1]) & ((np.r_[k[2:], -1] != k[1:])) & (np.r_[-1, k[:-2]] != k[1:]))
     a, b = order[pair], order[pair + 1]
     same = tail[a] == tail[b]  # both run the edge the same way: one of them must turn
     if not same.any():
-        return t
+        return (t, *defects)
     ta, tb = a // 3, b // 3
     # Breadth-first over shared edges; flip[t] is whether triangle t turns.
     n = len(t)
@@ -148,7 +188,9 @@ def orient(triangles):
             flip[piece] = ~flip[piece]
     t = t.copy()
     t[flip] = t[flip][:, ::-1]
-    return t
+    return (t, *defects)
+
+
 
 
 def round_deck(in_path, out_path, seeds, radius, part=None, tolerance=None, feature_angle=30.0, reach=3.0,
@@ -159,7 +201,7 @@ def round_deck(in_path, out_path, seeds, radius, part=None, tolerance=None, feat
     ELSET in read_deck()["parts"]) to round alone; the other parts are kept as they are.  Other arguments as
     round_edges (band: the band's element controls).  report["deck"]["quality"]: the new elements' quality.
     Returns DeckRoundingResult; raises RoundingError (nothing written)."""
-    from . import deck_edit  # the mesh -> elements step (kept apart: one file per pass)
+    from . import deck_check, deck_edit  # the mesh -> elements step and the written deck's check
     stamps = [_stamp()]
     _check_extension(out_path)
     if DECK_EXTENSIONS[_ext(in_path)] != DECK_EXTENSIONS[_ext(out_path)]:
@@ -167,18 +209,19 @@ def round_deck(in_path, out_path, seeds, radius, part=None, tolerance=None, feat
                             code="invalid_input")
     arrays = read_deck(in_path)
     stamps.append(_stamp())
-    vertices, triangles, tri_shell, vertex_node = deck_triangles(arrays, part)
+    split = shell_triangles(arrays, part)
     stamps.append(_stamp())
-    result = api.round_arrays(vertices, triangles, seeds, radius, tolerance=tolerance, feature_angle=feature_angle,
-                              reach=reach, cancel=cancel, band=band)
+    # The result is used as its delta (the band); its whole arrays are made only if asked for.
+    result = api.round_arrays(split.vertices, split.triangles, seeds, radius, tolerance=tolerance,
+                              feature_angle=feature_angle, reach=reach, cancel=cancel, band=band, arrays=False)
     stamps.append(_stamp())
-    edits, summary = deck_edit.edits_for(arrays, vertices, triangles, tri_shell, vertex_node, result,
-                                         quad_options or QuadOptions(), node_id_start, element_id_start,
-                                         keep_unused_nodes)
+    edits, summary, band = deck_edit.edits_for(arrays, split, result, quad_options or QuadOptions(),
+                                               node_id_start, element_id_start, keep_unused_nodes)
     stamps.append(_stamp())
     texts = arrays["deck"].write(**edits)
     stamps.append(_stamp())
-    paths = _write_checked(arrays, texts, in_path, out_path, part, triangles, summary)
+    paths = _write_checked(arrays, texts, in_path, out_path,
+                           lambda path: deck_check.check_written(path, arrays, part, split, edits, band, summary))
     stamps.append(_stamp())
     report = dict(result.report)
     report["deck"] = summary
@@ -204,13 +247,13 @@ def _check_extension(path):
                             ".bdf .nas .dat: Nastran, .inp: Abaqus)", code="invalid_input")
 
 
-def _write_checked(arrays, texts, in_path, out_path, part, in_triangles, summary):
+def _write_checked(arrays, texts, in_path, out_path, check):
     """Writes the files into a temporary folder beside out_path, reads them back and checks them, then moves
     them into place.  Included files go beside out_path under their relative names; an unchanged one in the
     same place as the input's is shared, a changed one there is refused (it would overwrite the input)."""
     in_dir = os.path.dirname(os.path.abspath(in_path))
     out_dir = os.path.dirname(os.path.abspath(out_path))
-    old_texts = arrays["deck"].texts()
+    old_texts = arrays["deck"].texts() if len(texts) > 1 else []  # (only the includes' are compared)
     rels, targets = [os.path.basename(out_path)], [os.path.abspath(out_path)]
     for path, old, new in zip(arrays["files"][1:], old_texts[1:], texts[1:]):
         rel = os.path.relpath(os.path.abspath(path), in_dir)
@@ -233,7 +276,7 @@ def _write_checked(arrays, texts, in_path, out_path, part, in_triangles, summary
             os.makedirs(os.path.dirname(path), exist_ok=True)
             with open(path, "wb") as stream:
                 stream.write(text)
-        _check_written(os.path.join(stage, rels[0]), part, in_triangles, summary)
+        check(os.path.join(stage, rels[0]))  # raises: nothing written
         written = []
         for rel, target in zip(rels, targets):
             if target is not None:
@@ -243,24 +286,3 @@ def _write_checked(arrays, texts, in_path, out_path, part, in_triangles, summary
         return written
     finally:
         shutil.rmtree(stage, ignore_errors=True)
-
-
-def _check_written(path, part, in_triangles, summary):
-    """The written deck reads back (IDs unique, nodes defined) and its shells have no open or non-manifold
-    edge the input did not have."""
-    back = require_core().read_deck(path).arrays()
-    _, tris, _, _ = deck_triangles(back, part)
-    before, after = _edge_defects(in_triangles), _edge_defects(tris)
-    summary["check"] = {"open_edges_before": before[0], "open_edges_after": after[0],
-                        "nonmanifold_edges_before": before[1], "nonmanifold_edges_after": after[1]}
-    if after[0] > before[0] or after[1] > before[1]:
-        raise RoundingError(f"the written deck's shells have {after[0]} open and {after[1]} non-manifold edges "
-                            f"(the input: {before[0]} and {before[1]}); nothing was written", code="result_invalid")
-
-
-def _edge_defects(triangles):
-    """(open edges, non-manifold edges) of a triangle mesh; a quad's diagonal is an interior edge."""
-    edges = np.sort(np.concatenate([triangles[:, [0, 1]], triangles[:, [1, 2]], triangles[:, [2, 0]]]), axis=1)
-    keys = edges[:, 0].astype(np.int64) * (int(triangles.max()) + 1) + edges[:, 1]
-    _, counts = np.unique(keys, return_counts=True)
-    return int(np.sum(counts == 1)), int(np.sum(counts > 2))

@@ -9,6 +9,7 @@
 #include <array>
 #include <functional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "meshround/types.h"
@@ -84,6 +85,23 @@ struct DeckSet {
   FieldStyle style = FieldStyle::Fixed;
 };
 
+// Records by ID: a table over the IDs' range when they are dense enough (the usual deck: O(1) and no
+// hashing), else sorted (ID, record) pairs.
+class IdIndex {
+ public:
+  // Indexes ids (record i has ids[i]). Returns {i, j}: the first record i (in order) whose ID the record
+  // j < i already has, or {-1, -1} when the IDs are unique (the index is complete only then).
+  std::pair<int, int> build(const std::vector<long long>& ids);
+  int find(long long id) const;  // the record with this ID, or -1
+  size_t size() const { return count_; }
+
+ private:
+  size_t count_ = 0;
+  long long first_ = 0;                          // dense: table_[k] is the record of ID first_ + k, or -1
+  std::vector<int> table_;
+  std::vector<std::pair<long long, int>> sorted_;  // sparse
+};
+
 struct Deck {
   DeckFormat format = DeckFormat::LsDyna;
   std::vector<DeckFile> files;  // files[0] is the main file, then includes in the order met
@@ -93,6 +111,7 @@ struct Deck {
   std::vector<DeckSet> sets;
   long long max_node_id = 0;     // largest node ID in the deck
   long long max_element_id = 0;  // largest element ID of any element type the reader recognises
+  IdIndex node_by_id, shell_by_id;  // made by parse_deck (IDs checked unique there)
 };
 
 // Reads `text` of a main file; includes are loaded through `load` (path relative to the including
