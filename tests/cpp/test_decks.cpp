@@ -110,6 +110,22 @@ TEST(DeckLsDyna, StandardFieldsReadAndRoundTrip) {
   expect_unchanged(d);
 }
 
+// *PART options carry cards after the part card (_INERTIA: three more), and a part's title may be a blank
+// line (LS-PrePost writes 80 spaces): it is still the title, and the next card the part's.
+TEST(DeckLsDyna, PartWithBlankTitleAndInertiaCards) {
+  std::string t = lsdyna_standard();
+  const std::string inertia = "*PART_INERTIA\n$# title\n" + std::string(80, ' ') + "\n$#     pid     secid       mid\n" +
+                              f(10, 9) + f(10, 2) + f(10, 2) + "\n" + f(10, 0) + f(10, 0) + f(10, 1) + "\n" +
+                              "  0.0013833.3715e-041.1187e-079.3520e-04-1.491e-076.9611e-04\n" + f(10, 0) + f(10, 0) + "\n";
+  t.insert(t.find("*NODE"), inertia);
+  const Deck d = parse(t, DeckFormat::LsDyna);
+  ASSERT_EQ(d.parts.size(), 2u);
+  EXPECT_EQ(d.parts[1].id, 9);
+  EXPECT_EQ(d.parts[1].name, "");
+  EXPECT_EQ(d.shells.size(), 3u);
+  expect_unchanged(d);
+}
+
 TEST(DeckLsDyna, LongI10AndFreeFormatLines) {
   // *NODE + (20 columns), *ELEMENT_SHELL % (10 columns), comma lines mixed in, CRLF line ends.
   std::string t = "*KEYWORD\r\n*NODE +\r\n";
