@@ -30,9 +30,16 @@ def observed(tmp_path_factory):
                  "gui_cancel_preview.png"):
         if os.path.exists(os.path.join(ARTIFACTS, name)):
             os.remove(os.path.join(ARTIFACTS, name))
+    return run_gui_macro(home)
+
+
+def run_gui_macro(home, **extra_env):
+    """Runs gui_macro.py in a real FreeCAD under Xvfb with user folder `home` (its Mod/MeshRound linked to
+    this tree) and returns what it observed (extra_env: e.g. MESHROUND_GUI_STEPS="deck")."""
     result = home / "observed.json"
     env = dict(os.environ, FREECAD_USER_HOME=str(home), QTWEBENGINE_CHROMIUM_FLAGS="--no-sandbox",
-               MESHROUND_GUI_RESULT=str(result), MESHROUND_GUI_ARTIFACTS=ARTIFACTS, MESHROUND_GUI_DIR=HERE)
+               MESHROUND_GUI_RESULT=str(result), MESHROUND_GUI_ARTIFACTS=ARTIFACTS, MESHROUND_GUI_DIR=HERE,
+               **extra_env)
     run = run_in_own_session(["xvfb-run", "-a", "-s", "-screen 0 1280x1024x24", "freecad",
                               os.path.join(HERE, "gui_macro.py")], env)
     assert result.exists(), (f"the macro wrote no result\nstdout:\n{run.stdout[-3000:]}"

@@ -11,7 +11,7 @@ import sys
 import numpy as np
 import pytest
 
-from test_gui import ARTIFACTS, HERE, REPO, TIMINGS, read_png, run_in_own_session
+from test_gui import ARTIFACTS, REPO, TIMINGS, read_png, run_gui_macro
 
 sys.path.append(os.path.join(REPO, "tests", "python"))
 import deck_files  # noqa: E402
@@ -26,17 +26,7 @@ def observed(tmp_path_factory):
     os.makedirs(home / "Mod")
     os.symlink(os.path.join(REPO, "Mod", "MeshRound"), home / "Mod" / "MeshRound")
     os.makedirs(ARTIFACTS, exist_ok=True)
-    result = home / "observed.json"
-    env = dict(os.environ, FREECAD_USER_HOME=str(home), QTWEBENGINE_CHROMIUM_FLAGS="--no-sandbox",
-               MESHROUND_GUI_RESULT=str(result), MESHROUND_GUI_ARTIFACTS=ARTIFACTS, MESHROUND_GUI_DIR=HERE,
-               MESHROUND_GUI_STEPS="deck")
-    run = run_in_own_session(["xvfb-run", "-a", "-s", "-screen 0 1280x1024x24", "freecad",
-                              os.path.join(HERE, "gui_macro.py")], env)
-    assert result.exists(), (f"the macro wrote no result\nstdout:\n{run.stdout[-3000:]}"
-                             f"\nstderr:\n{run.stderr[-3000:]}")
-    data = json.loads(result.read_text())
-    assert "error" not in data, data["error"]
-    return data
+    return run_gui_macro(home, MESHROUND_GUI_STEPS="deck")
 
 
 def test_file_open_makes_a_deck_with_its_parts(observed):
