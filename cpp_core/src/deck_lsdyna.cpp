@@ -332,7 +332,9 @@ std::string lsdyna_members(const std::vector<long long>& ids, FieldStyle style, 
   for (long long x : ids) fixed = fixed && fits(x, w);
   std::string out;
   for (size_t k = 0; k < ids.size(); k += 8) {
-    for (size_t j = k; j < std::min(ids.size(), k + 8); ++j) out += fixed ? int_field(ids[j], w) : (j > k ? "," : "") + std::to_string(ids[j]);
+    const size_t end = std::min(ids.size(), k + 8);
+    for (size_t j = k; j < end; ++j) out += fixed ? int_field(ids[j], w) : (j > k ? "," : "") + std::to_string(ids[j]);
+    if (!fixed && end == k + 1) out += ',';  // a line without a comma would be read in fixed fields
     out += eol;
   }
   return out;

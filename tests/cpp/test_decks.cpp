@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <map>
 
+#include "deck_text.h"  // (private: the writers' field layout)
 #include "meshround/deck.h"
 
 using namespace meshround;
@@ -124,6 +125,19 @@ TEST(DeckLsDyna, PartWithBlankTitleAndInertiaCards) {
   EXPECT_EQ(d.parts[1].name, "");
   EXPECT_EQ(d.shells.size(), 3u);
   expect_unchanged(d);
+}
+
+// Set members too wide for the fields are written free-format; a line holding one of them alone keeps a
+// comma (without one it would be read in fixed fields, the ID cut at 10 characters).
+TEST(DeckLsDyna, WideSetMembersWrittenFreeFormatReadBackWhole) {
+  const std::vector<long long> ids{1, 2, 3, 4, 5, 6, 7, 8, 12345678901LL};
+  const std::string text = decktext::lsdyna_members(ids, FieldStyle::Fixed, "\n");
+  EXPECT_EQ(text, "1,2,3,4,5,6,7,8\n12345678901,\n");
+  std::string t = lsdyna_standard();
+  t.insert(t.find("*MAT_RIGID"), "*SET_NODE_LIST\n" + f(10, 13) + "\n" + text);
+  const Deck d = parse(t, DeckFormat::LsDyna);
+  ASSERT_EQ(d.sets.size(), 3u);
+  EXPECT_EQ(d.sets[2].members, ids);
 }
 
 TEST(DeckLsDyna, LongI10AndFreeFormatLines) {
