@@ -324,6 +324,25 @@ def test_cli_rounds_a_deck_by_extension(box, tmp_path):
         cli.main(["round", path, str(tmp_path / "x.stl"), "--seed", "37,40,30", "--radius", "5", "--part", "1"])
 
 
+def test_cli_numbers_new_nodes_and_elements_from_the_given_ids(box, tmp_path):
+    from MeshRound import cli
+    path = deck_files.write_deck(str(tmp_path), "lsdyna_fixed", *box)
+    before = MeshRound.read_deck(path)
+    out = str(tmp_path / "ids.k")
+    assert cli.main(["round", path, out, "--seed", "37,40,30", "--radius", "5", "--node-id-start", "700001",
+                     "--element-id-start", "900001"]) == 0
+    after = MeshRound.read_deck(out)
+    new_nodes = np.setdiff1d(after["node_ids"], before["node_ids"])
+    new_elements = np.setdiff1d(after["shell_ids"], before["shell_ids"])
+    assert new_nodes.min() == 700001 and new_nodes.max() == 700000 + len(new_nodes)
+    assert new_elements.min() == 900001 and new_elements.max() == 900000 + len(new_elements)
+    # A start inside the deck's own IDs collides: refused by the written deck's check, nothing written.
+    clash = str(tmp_path / "clash.k")
+    assert cli.main(["round", path, clash, "--seed", "37,40,30", "--radius", "5",
+                     "--element-id-start", str(int(before["shell_ids"][-1]))]) == 1
+    assert not os.path.exists(clash)
+
+
 def _without_subsequence(longer, shorter):
     """The lines of `longer` left when `shorter` is matched in it in order (fails if it is not)."""
     extra, k = [], 0

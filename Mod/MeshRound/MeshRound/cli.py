@@ -111,6 +111,10 @@ def build_parser():
                       help="largest aspect ratio (longest / shortest side) of the round's elements, >= 1")
     band.add_argument("--triangles", action="store_true",
                       help="solver decks: write the band as triangles only (default: quads where they pair)")
+    rnd.add_argument("--node-id-start", metavar="N", type=int, default=None,
+                     help="solver decks: number new nodes from N (default: above the deck's largest node ID)")
+    rnd.add_argument("--element-id-start", metavar="N", type=int, default=None,
+                     help="solver decks: number new elements from N (default: above the deck's largest element ID)")
     rnd.add_argument("--part", metavar="PID", type=int, default=None,
                      help="solver decks: round only this part's shells (LS-DYNA/Nastran PID; Abaqus: the "
                           "ELSET's number in order of appearance); other parts are kept as they are")
@@ -229,7 +233,8 @@ def run_round_deck(args):
     try:
         res = MeshRound.round_deck(args.input, args.output, args.seed, radius, part=args.part,
                                    tolerance=args.tolerance, feature_angle=args.feature_angle, reach=args.reach,
-                                   band=band_controls(args),
+                                   band=band_controls(args), node_id_start=args.node_id_start,
+                                   element_id_start=args.element_id_start,
                                    quad_options=QuadOptions(quads=False) if args.triangles else None)
     except MeshRound.RoundingError as exc:
         raise Failure(f"rounding failed [{getattr(exc, 'code', 'invalid_input')}]: {exc}") from exc
