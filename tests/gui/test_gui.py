@@ -22,15 +22,21 @@ TIMINGS = os.path.join(ARTIFACTS, "workbench_timings.json")
 
 @pytest.fixture(scope="module")
 def observed(tmp_path_factory):
-    home = tmp_path_factory.mktemp("freecad-home")
-    os.makedirs(home / "Mod")
-    os.symlink(os.path.join(REPO, "Mod", "MeshRound"), home / "Mod" / "MeshRound")
-    os.makedirs(ARTIFACTS, exist_ok=True)
+    home = freecad_home(tmp_path_factory, "freecad-home")
     for name in ("gui_sharp.png", "gui_rounded.png", "gui_preview.png", "gui_die_preview.png",
                  "gui_cancel_preview.png"):
         if os.path.exists(os.path.join(ARTIFACTS, name)):
             os.remove(os.path.join(ARTIFACTS, name))
     return run_gui_macro(home)
+
+
+def freecad_home(tmp_path_factory, name):
+    """A throw-away FreeCAD user folder whose Mod/MeshRound is this tree's (and the artifacts folder)."""
+    home = tmp_path_factory.mktemp(name)
+    os.makedirs(home / "Mod")
+    os.symlink(os.path.join(REPO, "Mod", "MeshRound"), home / "Mod" / "MeshRound")
+    os.makedirs(ARTIFACTS, exist_ok=True)
+    return home
 
 
 def run_gui_macro(home, **extra_env):

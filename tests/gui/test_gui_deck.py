@@ -11,7 +11,7 @@ import sys
 import numpy as np
 import pytest
 
-from test_gui import ARTIFACTS, REPO, TIMINGS, read_png, run_gui_macro
+from test_gui import REPO, TIMINGS, freecad_home, read_png, run_gui_macro
 
 sys.path.append(os.path.join(REPO, "tests", "python"))
 import deck_files  # noqa: E402
@@ -22,11 +22,7 @@ TOP_QUADS = 24 * 16                          # part 2, the top face
 
 @pytest.fixture(scope="module")
 def observed(tmp_path_factory):
-    home = tmp_path_factory.mktemp("freecad-home-deck")
-    os.makedirs(home / "Mod")
-    os.symlink(os.path.join(REPO, "Mod", "MeshRound"), home / "Mod" / "MeshRound")
-    os.makedirs(ARTIFACTS, exist_ok=True)
-    return run_gui_macro(home, MESHROUND_GUI_STEPS="deck")
+    return run_gui_macro(freecad_home(tmp_path_factory, "freecad-home-deck"), MESHROUND_GUI_STEPS="deck")
 
 
 def test_file_open_makes_a_deck_with_its_parts(observed):
