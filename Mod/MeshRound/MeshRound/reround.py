@@ -14,44 +14,104 @@ corner line, then rounds that edge with round_edges' passes at `radius` (a numbe
 control points; 0: the sharp edge only).  A strip that is not a round between two flat sides is refused
 with RoundingError code "not_a_round", naming the place and the reason; the input mesh is never changed.
 """
+import math
 import time
+
+import FreeCAD
+import numpy as np
 
 from . import api, inputs, meshconv
 from .errors import RoundingError, check_cancelled
 
-__all__ = ["change_radius"]
+__all__ = ["change_radius", "change_radius_arrays", "strip_facet_indices"]
 
 
 def change_radius(mesh, seeds, radius, tolerance=None, feature_angle=30.0, reach=3.0, max_new_facets=None,
-                  cancel=None, fit_tolerance=0.01):
+                  cancel=None, fit_tolerance=0.01, band=None):
     """Round the existing rounds that `seeds` pick again at `radius` (0: sharpen them).
 
     mesh: Mesh.Mesh (not modified).  seeds: a point, or a list of points, each on an existing round.
     radius: mm (>= 0), or [(point, r)] control points.  fit_tolerance: share of the found radius its
     vertices may stray from the measured law before the strip is refused as not a round.  The other
-    arguments are round_edges'.  Returns a RoundingResult whose report adds "strips" (per strip:
-    found_radius, radius_min, radius_max, constant, law, fit_residual, opening_deg, convex, corner,
-    strip_facets, recognised, ...) and "found_radius" (the list of the strips' found radii).
+    arguments are round_edges' (band: the new round's element controls).  Returns a RoundingResult whose
+    report adds "strips" (per strip: found_radius, radius_min, radius_max, constant, law, fit_residual,
+    opening_deg, convex, corner, strip_facets, recognised, ...) and "found_radius" (the list of the
+    strips' found radii).
     """
     started = time.perf_counter()
     check_cancelled(cancel)
     inputs.check_mesh(mesh)
-    arguments = _arguments(seeds, radius, tolerance, feature_angle, reach, max_new_facets, cancel, fit_tolerance)
     vertices, triangles = meshconv.mesh_to_arrays(mesh)
-    result = api._round(vertices, triangles, arguments, engine="change_radius")
-    result.report["found_radius"] = [s["found_radius"] for s in result.report["strips"]]
+    result = change_radius_arrays(vertices, triangles, seeds, radius, tolerance, feature_angle, reach, max_new_facets,
+                                  cancel, fit_tolerance, band)
     result.mesh  # noqa: B018  (built now: part of this call's cost)
     check_cancelled(cancel)
     result.report["seconds"] = time.perf_counter() - started
     return result
 
 
-def _arguments(seeds, radius, tolerance, feature_angle, reach, max_new_facets, cancel, fit_tolerance):
+def change_radius_arrays(vertices, triangles, seeds, radius, tolerance=None, feature_angle=30.0, reach=3.0,
+                         max_new_facets=None, cancel=None, fit_tolerance=0.01, band=None):
+    """change_radius for a mesh given as vertices (n, 3) and triangles (m, 3) (the task panel's preview)."""
+    started = time.perf_counter()
+    check_cancelled(cancel)
+    if len(triangles) == 0:
+        raise RoundingError("mesh is empty: it has no facets")
+    arguments = _arguments(seeds, radius, tolerance, feature_angle, reach, max_new_facets, cancel, fit_tolerance, band)
+    result = api._round(vertices, triangles, arguments, engine="change_radius")
+    result.report["found_radius"] = [s["found_radius"] for s in result.report["strips"]]
+    result.report["seconds"] = time.perf_counter() - started
+    return result
+
+
+def strip_facet_indices(vertices, triangles, strip, slack=1e-3, flat_angle=0.5):
+    """The facets of the input (vertices (n, 3), triangles (m, 3)) that make the round `strip` (a row of
+    report["strips"]): every vertex within the round's width of its corner line (r tan(opening / 2) at the
+    local found radius) and between the line's ends, turning about the line: not facing along it (an end
+    face) nor across it (a side's facet there, which faces away from the line by 90 deg within flat_angle).
+    Their count is a constant round's "strip_facets" (a variable one's within some 10 %); the task panel
+    highlights them."""
+    vertices, triangles = np.asarray(vertices, dtype=np.float64), np.asarray(triangles, dtype=np.int64)
+    start, end = np.asarray(strip["corner"], dtype=np.float64)
+    length = float(np.linalg.norm(end - start))
+    axis = (end - start) / length
+    corners = vertices[triangles]                                  # (m, 3, 3)
+    along = (corners - start) @ axis                               # (m, 3)
+    radial = corners - start - along[..., None] * axis             # from the corner line, across it
+    width = _found_radius_along(strip, start, axis, along) * math.tan(math.radians(strip["opening_deg"]) / 2)
+    near = (np.linalg.norm(radial, axis=2) <= width * (1 + slack) + slack * strip["found_radius"]).all(axis=1)
+    inside = (along > -slack).all(axis=1) & (along < length + slack).all(axis=1)
+    normals = _unit(np.cross(corners[:, 1] - corners[:, 0], corners[:, 2] - corners[:, 0]))
+    turning = (np.abs(normals @ axis) < 0.5) & (np.abs(np.sum(normals * _unit(radial.mean(axis=1)), axis=1))
+                                                 > math.sin(math.radians(flat_angle)))
+    return np.flatnonzero(near & inside & turning)
+
+
+def _found_radius_along(strip, start, axis, along):
+    """The strip's found radius (its law, linear between stations) at the positions `along` its corner line."""
+    law = np.asarray(strip["law"], dtype=np.float64).reshape(-1, 4)
+    stations = (law[:, :3] - start) @ axis
+    order = np.argsort(stations)
+    return np.interp(along, stations[order], law[order, 3])
+
+
+def _unit(rows):
+    return rows / np.maximum(np.linalg.norm(rows, axis=-1, keepdims=True), 1e-300)
+
+
+def sharpen_only(radius):
+    """True for radius 0 (mm, or a Quantity of 0): sharpen the rounds, make no new one."""
+    if isinstance(radius, FreeCAD.Units.Quantity):
+        radius = radius.Value
+    return inputs._is_number(radius) and float(radius) == 0.0
+
+
+def _arguments(seeds, radius, tolerance, feature_angle, reach, max_new_facets, cancel, fit_tolerance, band=None):
     """round_edges' checked arguments; radius 0 (sharpen only) passes through as 0."""
-    sharpen_only = inputs._is_number(radius) and float(radius) == 0.0
-    arguments = api._engine_arguments(seeds, 1.0 if sharpen_only else radius, tolerance, feature_angle, reach,
-                                      max_new_facets, cancel)
-    if sharpen_only:
+    sharpen = sharpen_only(radius)
+    arguments = api._engine_arguments(seeds, 1.0 if sharpen else radius, tolerance, feature_angle, reach,
+                                      max_new_facets, cancel, band)
+    if sharpen:
         arguments["radius"] = 0.0
     if isinstance(fit_tolerance, bool) or not inputs._is_number(fit_tolerance) or not 0 < float(fit_tolerance) < 1:
         raise RoundingError(f"fit_tolerance must be a share of the radius in (0, 1), got {fit_tolerance!r}")

@@ -17,20 +17,27 @@ Properties (group "Rounding"):
   MaxAspectRatio   App::PropertyFloat       band elements: longest / shortest side at most, 0 = built-in
   Surfaces         App::PropertyLink        (read-only) the "RoundingSurfaces" Part::Feature child whose
                                             Shape is the compound of the rolling-ball faces (STEP export)
+  Operation        App::PropertyEnumeration "Round sharp edges" (round_edges; the default, and what files
+                                            saved before it had) or "Change radius of existing round"
+                                            (change_radius: each seed on an existing round, which is made
+                                            again at Radius; Radius 0 sharpens it)
   Statistics       App::PropertyMap         (read-only output) the engine's report of the last recompute
+  FoundRadius      App::PropertyFloatList   (read-only output) change radius: the radius each round had (mm)
 
-execute() never touches Base; on failure it raises, FreeCAD marks the feature invalid and prints why.
+execute() never touches Base; on failure it raises, FreeCAD marks the feature invalid and prints why
+(a change of radius's refusal with its code first, e.g. "not_a_round: ...").
 The class path MeshRound.objects.rounding.Rounding is stored in .FCStd files: keep it stable.
 """
 import FreeCAD
 
-from .. import api, inputs
+from .. import api, inputs, reround
 from ..errors import RoundingError
 from ..progress import busy
 from . import surfaces as surfaces_feature
 
 TYPE = "Mesh::FeaturePython"
 GROUP = "Rounding"
+ROUND, CHANGE_RADIUS = OPERATIONS = ["Round sharp edges", "Change radius of existing round"]
 
 # (type, name, tooltip, default); added only when missing, so files from older versions keep loading.
 PROPERTIES = [
@@ -51,10 +58,18 @@ PROPERTIES = [
     ("App::PropertyFloat", "MaxAspectRatio", "Band elements: largest longest/shortest side of the round's "
      "elements (>= 1); 0 = the built-in bound", 0.0),
     ("App::PropertyLink", "Surfaces", "Part feature showing the rolling-ball surfaces", None),
+    ("App::PropertyEnumeration", "Operation", "Round sharp edges, or change the radius of existing rounds "
+     "(each seed on a round; Radius 0 sharpens it)", OPERATIONS),
     ("App::PropertyMap", "Statistics", "Report of the last recompute", None),
+    ("App::PropertyFloatList", "FoundRadius", "Change radius: the radius each picked round had (mm)", None),
 ]
-# Set by the feature itself, shown read-only; Statistics is an output (writing it does not touch).
-PROPERTY_STATUS = {"Surfaces": ["ReadOnly"], "Statistics": ["Output", "ReadOnly"]}
+# Set by the feature itself, shown read-only; Statistics and FoundRadius are outputs (writing them does not
+# touch).
+PROPERTY_STATUS = {"Surfaces": ["ReadOnly"], "Statistics": ["Output", "ReadOnly"],
+                   "FoundRadius": ["Output", "ReadOnly"]}
+# The engine each Operation runs: both take (mesh, seeds, radius, tolerance=, feature_angle=, reach=, cancel=,
+# band=) and return a RoundingResult.
+ENGINES = {ROUND: api.round_edges, CHANGE_RADIUS: reround.change_radius}
 
 
 class Rounding:
@@ -84,17 +99,17 @@ class Rounding:
     def execute(self, obj):
         base = obj.Base
         check_base(base)
-        with busy(f"Rounding edges of {base.Label} (Esc cancels)") as token:
-            result = api.round_edges(base.Mesh, list(obj.Seeds), radius_argument(obj),
-                                     tolerance=obj.Tolerance.Value or None,
-                                     feature_angle=obj.FeatureAngle.Value, reach=obj.Reach, cancel=token,
-                                     band=band_argument(obj))
+        with busy(f"{_doing(obj)} of {base.Label} (Esc cancels)") as token:
+            try:
+                result = engine(obj)(base.Mesh, list(obj.Seeds), radius_argument(obj),
+                                     tolerance=obj.Tolerance.Value or None, feature_angle=obj.FeatureAngle.Value,
+                                     reach=obj.Reach, cancel=token, band=band_argument(obj))
+            except RoundingError as exc:
+                raise _refusal(obj, exc) from None
         obj.Mesh = result.mesh
         surfaces_feature.update_surfaces(obj, result.surfaces)
-        statistics = {key: str(value) for key, value in result.report.items()
-                      if not isinstance(value, (dict, list))}  # the scalars; details stay in the API
-        statistics.update({f"band_{key}": str(value) for key, value in result.report["band_quality"].items()})
-        obj.Statistics = statistics
+        obj.Statistics = statistics(result.report)
+        obj.FoundRadius = result.report.get("found_radius", [])
         note = api.quality_note(result.report)
         if note:  # in the report view, where a recompute's warnings go
             FreeCAD.Console.PrintWarning(f"{obj.Label}: {note}\n")
@@ -107,6 +122,35 @@ class Rounding:
         return None
 
     dumps, loads = __getstate__, __setstate__  # the names FreeCAD >= 0.21 looks for
+
+
+def engine(obj):
+    """The engine function obj's Operation runs (api.round_edges or reround.change_radius)."""
+    return ENGINES[getattr(obj, "Operation", ROUND)]
+
+
+def _doing(obj):
+    return "Changing the radius" if engine(obj) is reround.change_radius else "Rounding edges"
+
+
+def _refusal(obj, exc):
+    """The error a refusal leaves the feature with: change radius names the code first (e.g. "not_a_round:
+    ...", as the README's table of refusals lists it); round_edges' message as it is."""
+    if engine(obj) is reround.change_radius and exc.code != "cancelled":
+        return RoundingError(f"{exc.code}: {exc}", exc.code)
+    return exc
+
+
+def statistics(report):
+    """The report's scalars as strings (details stay in the API), the band's quality, and per round that
+    change radius found: its radius, law ("constant" or min-max) and strip facets."""
+    values = {key: str(value) for key, value in report.items() if not isinstance(value, (dict, list))}
+    values.update({f"band_{key}": str(value) for key, value in report["band_quality"].items()})
+    for number, strip in enumerate(report.get("strips", []), 1):
+        law = "constant" if strip["constant"] else f"{strip['radius_min']:.4g} to {strip['radius_max']:.4g} mm"
+        values[f"strip{number}_found_radius"] = f"{strip['found_radius']:.4g} mm ({law})"
+        values[f"strip{number}_facets"] = str(strip["strip_facets"])
+    return values
 
 
 def check_base(base):
@@ -137,15 +181,19 @@ def band_argument(obj):
 
 
 def make_rounding(base, seeds, radius, tolerance=0, feature_angle=30, reach=3, name="Rounding",
-                  doc=None):
+                  doc=None, operation=ROUND):
     """Add a Rounding of mesh feature `base` (and its "RoundingSurfaces" child) to doc; no recompute.
 
-    radius: mm, or a list of (point, radius) control points for a variable radius.  The arguments are
-    checked here (RoundingError); whether the seeds find a sharp edge shows at recompute.
+    radius: mm, or a list of (point, radius) control points for a variable radius.  operation: ROUND
+    (seeds next to sharp edges) or CHANGE_RADIUS (seeds on existing rounds; radius 0 sharpens them).  The
+    arguments are checked here (RoundingError); whether the seeds find an edge or a round shows at recompute.
     """
     check_base(base)
+    if operation not in OPERATIONS:
+        raise RoundingError(f"operation must be one of {OPERATIONS}, got {operation!r}")
     seed_vectors = [FreeCAD.Vector(*p) for p in inputs.seed_array(seeds).tolist()]
-    largest_radius, law = inputs.radius_and_law(radius)
+    sharpen = operation == CHANGE_RADIUS and reround.sharpen_only(radius)
+    largest_radius, law = (0.0, None) if sharpen else inputs.radius_and_law(radius)
     tolerance = inputs.tolerance_value(tolerance)
     feature_angle = inputs.feature_angle_value(feature_angle)
     reach = inputs.reach_value(reach)
@@ -157,6 +205,7 @@ def make_rounding(base, seeds, radius, tolerance=0, feature_angle=30, reach=3, n
     obj = doc.addObject(TYPE, name)
     Rounding(obj)
     obj.Base = base
+    obj.Operation = operation
     obj.Seeds = seed_vectors
     obj.Radius = largest_radius
     if law is not None:
