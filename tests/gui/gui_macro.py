@@ -5,7 +5,8 @@ where it matters), records what it observes in $MESHROUND_GUI_RESULT (JSON), sav
 $MESHROUND_GUI_ARTIFACTS, and quits.  Every step is recorded, so a failing step shows in the JSON instead
 of hanging the test.  The steps are in gui_box.py (the workflow on a box), gui_die.py (progress, and
 the preview's speed on a 147k-facet die) and gui_cancel.py (Esc and Cancel during long runs); with
-MESHROUND_GUI_STEPS=deck, only gui_deck.py (a solver deck opened, drawn, rounded, exported).
+MESHROUND_GUI_STEPS=deck, only gui_deck.py (a solver deck opened, drawn, rounded, exported); with
+MESHROUND_GUI_STEPS=reround, only gui_reround.py (the radius of an existing round changed).
 """
 import json
 import os
@@ -29,6 +30,9 @@ try:
     if os.environ.get("MESHROUND_GUI_STEPS") == "deck":  # test_gui_deck.py: the solver deck steps alone
         import gui_deck
         gui_deck.run(os.path.dirname(RESULT))
+    elif os.environ.get("MESHROUND_GUI_STEPS") == "reround":  # test_gui_reround.py: the existing-round mode
+        import gui_reround
+        gui_reround.run()
     else:
         import gui_box
         import gui_cancel

@@ -60,8 +60,8 @@ def test_workbench_icon_toolbar_menu_and_command(observed):
     icon = observed["workbench_icon"]
     assert icon.endswith("MeshRound.svg") and os.path.isfile(icon)
     assert observed["command_registered"]
-    assert observed["toolbar_actions"] == ["Round sharp edges", "Export rounded deck"]
-    assert observed["menu_actions"] == ["Round sharp edges", "Export rounded deck"]
+    assert observed["toolbar_actions"] == ["Round sharp edges", "Change round radius", "Export rounded deck"]
+    assert observed["menu_actions"] == ["Round sharp edges", "Change round radius", "Export rounded deck"]
     assert observed["panel_open"]
     assert observed["overlays_in_scene"] == [True, True]  # chain marks + preview layer
 

@@ -13,13 +13,16 @@ class RoundEdgesCommand:
     If the selection carries a picked point on that mesh, it becomes the first seed.
     """
 
+    EXISTING_ROUND = False  # the panel's pick mode: sharp edges
+    RESOURCES = {
+        "Pixmap": icon_path("MeshRound_RoundEdges.svg"),
+        "MenuText": "Round sharp edges",
+        "ToolTip": "Round sharp edge chains of a mesh with a rolling ball: pick next to an edge, "
+                   "set the radius, preview, OK.",
+    }
+
     def GetResources(self):
-        return {
-            "Pixmap": icon_path("MeshRound_RoundEdges.svg"),
-            "MenuText": "Round sharp edges",
-            "ToolTip": "Round sharp edge chains of a mesh with a rolling ball: pick next to an edge, "
-                       "set the radius, preview, OK.",
-        }
+        return dict(self.RESOURCES)
 
     def IsActive(self):
         doc = FreeCAD.ActiveDocument
@@ -28,11 +31,26 @@ class RoundEdgesCommand:
     def Activated(self):
         base, seeds = _base_and_seeds()
         if base is None:
-            FreeCAD.Console.PrintError("MeshRound: select the mesh to round (or keep only one mesh "
-                                       "visible) and run Round sharp edges again.\n")
+            FreeCAD.Console.PrintError(f"MeshRound: select the mesh (or keep only one mesh visible) and run "
+                                       f"{self.RESOURCES['MenuText']} again.\n")
             return
+        from .objects.rounding import CHANGE_RADIUS, ROUND
         from .taskpanels.round_edges import RoundEdgesPanel
-        FreeCADGui.Control.showDialog(RoundEdgesPanel(base, seeds=seeds))
+        operation = CHANGE_RADIUS if self.EXISTING_ROUND else ROUND
+        FreeCADGui.Control.showDialog(RoundEdgesPanel(base, seeds=seeds, operation=operation))
+
+
+class ChangeRadiusCommand(RoundEdgesCommand):
+    """Change round radius: the same task panel in its "Existing round" pick mode (a click on an existing
+    round recognises it and shows its radius; OK makes a Rounding that changes it)."""
+
+    EXISTING_ROUND = True
+    RESOURCES = {
+        "Pixmap": icon_path("MeshRound_ChangeRadius.svg"),
+        "MenuText": "Change round radius",
+        "ToolTip": "Change the radius of an existing round of a mesh (a CAD fillet, a mesher's or MeshRound's): "
+                   "click on the round, see the radius found, set the new one (0: sharp), preview, OK.",
+    }
 
 
 def _is_mesh(obj):
@@ -89,4 +107,5 @@ class ExportDeckCommand:
 
 
 # name -> command, in toolbar and menu order
-COMMANDS = {"MeshRound_RoundEdges": RoundEdgesCommand(), "MeshRound_ExportDeck": ExportDeckCommand()}
+COMMANDS = {"MeshRound_RoundEdges": RoundEdgesCommand(), "MeshRound_ChangeRadius": ChangeRadiusCommand(),
+            "MeshRound_ExportDeck": ExportDeckCommand()}

@@ -23,7 +23,7 @@ import numpy as np
 from . import api, inputs, meshconv
 from .errors import RoundingError, check_cancelled
 
-__all__ = ["change_radius", "change_radius_arrays", "strip_facet_indices"]
+__all__ = ["change_radius", "change_radius_arrays", "named", "strip_facet_indices"]
 
 
 def change_radius(mesh, seeds, radius, tolerance=None, feature_angle=30.0, reach=3.0, max_new_facets=None,
@@ -97,6 +97,14 @@ def _found_radius_along(strip, start, axis, along):
 
 def _unit(rows):
     return rows / np.maximum(np.linalg.norm(rows, axis=-1, keepdims=True), 1e-300)
+
+
+def named(exc):
+    """A change of radius's refusal as the feature and the task panel show it: its code first (e.g.
+    "not_a_round: ..."), as the README's table of refusals lists it; a cancellation as it is."""
+    if exc.code == "cancelled":
+        return exc
+    return RoundingError(f"{exc.code}: {exc}", exc.code)
 
 
 def sharpen_only(radius):

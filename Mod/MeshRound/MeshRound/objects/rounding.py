@@ -134,11 +134,9 @@ def _doing(obj):
 
 
 def _refusal(obj, exc):
-    """The error a refusal leaves the feature with: change radius names the code first (e.g. "not_a_round:
-    ...", as the README's table of refusals lists it); round_edges' message as it is."""
-    if engine(obj) is reround.change_radius and exc.code != "cancelled":
-        return RoundingError(f"{exc.code}: {exc}", exc.code)
-    return exc
+    """The error a refusal leaves the feature with: change radius names the code first (reround.named);
+    round_edges' message as it is."""
+    return reround.named(exc) if engine(obj) is reround.change_radius else exc
 
 
 def statistics(report):

@@ -12,6 +12,7 @@ SEED_COLOR = (0.85, 0.0, 0.0)      # red: the picked seeds
 LAW_COLOR = (0.0, 0.6, 0.0)        # green: variable-radius control points
 CONTACT_COLOR = (0.1, 0.2, 0.8)    # blue: where the ball touches the two sides
 PREVIEW_COLOR = (0.55, 0.78, 0.95)  # light blue: the rounded mesh preview
+STRIP_COLOR = (0.95, 0.0, 0.75)     # magenta: the facets of an existing round that was picked
 CORNER_COLORS = {                   # where picked chains meet, by the corner's blend (api.NetworkPlan)
     "mitre": (0.6, 0.0, 0.8),       # purple
     "sphere": (0.0, 0.55, 0.55),    # teal
@@ -67,6 +68,14 @@ def polylines_node(polylines, color, width=4.0):
         separator.addChild(coords)
         separator.addChild(lines)
     return separator
+
+
+def facet_edges_node(vertices, triangles, color, width=1.5):
+    """The edges of facets (vertices (n, 3), triangles (m, 3)) as lines: a highlight that leaves what is
+    under it (the preview) visible."""
+    triangles = np.asarray(triangles, dtype=np.int64).reshape(-1, 3)
+    loops = np.asarray(vertices, dtype=np.float32)[triangles[:, [0, 1, 2, 0]]]  # (m, 4, 3): closed
+    return polylines_node(list(loops), color, width=width)
 
 
 def markers_node(points, color):

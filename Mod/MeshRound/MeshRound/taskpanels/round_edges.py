@@ -1,7 +1,10 @@
 """The Round edges task panel: pick seeds on a mesh, see the chains and a live preview, accept.
 
 Picks: a click on the base mesh reaches handle_pick() through a selection observer; it adds a seed (or a
-variable-radius point), traces the chain at once and highlights it.  Scripts and the GUI test call the
+variable-radius point), traces the chain at once and highlights it.  In the "Existing round" pick mode (the
+Rounding's Operation "Change radius of existing round"; existing_round.py) a seed is a point on a round:
+the round is recognised, its facets highlighted and its radius shown, and the preview is change_radius'.
+The radius limit, rule line and corner plan beside the fields are round_edges_checks.py's.  Scripts and the GUI test call the
 same add_seed() / add_radius_point() / set_radius() / preview_now() / accept() without a mouse.
 
 The panel never touches the document before OK: chain highlight and preview are Coin overlays, and the
@@ -21,9 +24,11 @@ import FreeCAD
 import FreeCADGui
 from PySide import QtCore, QtGui
 
-from .. import api, inputs, meshconv, progress, radius_limits, shapes
+from .. import api, inputs, meshconv, progress, reround, shapes
 from ..errors import RoundingError
-from . import overlays
+from ..objects.rounding import ROUND
+from . import existing_round, overlays
+from .round_edges_checks import RadiusChecks
 from .round_edges_form import PICK_LAW_POINT, RoundEdgesForm, quantity_value
 
 PREVIEW_DELAY_MS = 150   # debounce: recompute the preview once the user stops typing/picking
@@ -43,16 +48,19 @@ def active_panel():
     return _active() if _active else None
 
 
-class RoundEdgesPanel:
-    """Task panel to create a Rounding of `base`, or to edit `feature` (whose Base is `base`)."""
+class RoundEdgesPanel(RadiusChecks):
+    """Task panel to create a Rounding of `base`, or to edit `feature` (whose Base is `base`).  operation:
+    the new Rounding's (objects.rounding ROUND: seeds next to sharp edges, or CHANGE_RADIUS: seeds on
+    existing rounds, the "Existing round" pick mode); an edited feature's own Operation otherwise."""
 
-    def __init__(self, base, feature=None, seeds=()):
+    def __init__(self, base, feature=None, seeds=(), operation=ROUND):
         self.base, self.feature, self.doc = base, feature, base.Document
         self.vertices, self.triangles = meshconv.mesh_to_arrays(base.Mesh)  # once: every pick traces
         values = dict(DEFAULTS, **_feature_values(feature)) if feature else dict(DEFAULTS, seeds=[], law=[])
         self.seeds = [FreeCAD.Vector(p) for p in values["seeds"]]
         self.law = list(values["law"])
         self.chain_wires, self.result, self.error = [], None, None
+        self.strips = []            # "Existing round": the rounds the seeds are on (change_radius' report rows)
         self.limits = []            # max_radius of the picked chains (ChainLimit each), shown beside the radius
         self.plan = None            # api.NetworkPlan of the picked chains when there are several (their corners)
         self._running = None        # the CancelWatch of the run under way (preview or OK), else None
@@ -61,7 +69,8 @@ class RoundEdgesPanel:
         self.cancelled_by = None    # how the last run was cancelled: None, "esc", "button" or "panel"
 
         self.form = RoundEdgesForm(values["radius"], values["tolerance"], values["feature_angle"],
-                                   values["reach"], values["thickness"], values["tool"])
+                                   values["reach"], values["thickness"], values["tool"],
+                                   values.get("operation", operation))
         self._radius_expression = _expression_of(feature, "Radius")
         self._timer = QtCore.QTimer()
         self._timer.setSingleShot(True)
@@ -96,14 +105,23 @@ class RoundEdgesPanel:
         """Add a seed if a sharp edge is near it: trace and highlight its chain. True if added."""
         candidate = self.seeds + [FreeCAD.Vector(*point)]
         try:
-            self.chain_wires = api.trace_arrays(self.vertices, self.triangles, candidate,
-                                                self.feature_angle())
+            self._find(candidate)
         except RoundingError as exc:
             self._show_error(f"Seed not added: {exc}")
             return False
         self.seeds = candidate
         self._seeds_changed(retrace=False)
         return True
+
+    def _find(self, seeds):
+        """Trace the sharp-edge chains the seeds pick; in "Existing round" mode recognise the rounds they
+        are on instead (their rebuilt sharp edges become the chains).  RoundingError if a seed finds none."""
+        if self.form.existing_round():
+            self.strips, self.chain_wires = existing_round.recognise(self.vertices, self.triangles, seeds,
+                                                                     self.feature_angle(), self.form.reach.value())
+        else:
+            self.strips = []
+            self.chain_wires = api.trace_arrays(self.vertices, self.triangles, seeds, self.feature_angle())
 
     def remove_seeds(self, rows):
         keep = set(range(len(self.seeds))) - set(rows)
@@ -145,6 +163,10 @@ class RoundEdgesPanel:
                     tolerance=self.form.tolerance.value() or None,
                     feature_angle=self.feature_angle(), reach=self.form.reach.value())
 
+    def _engine(self):
+        """What the preview runs: round_edges, or change_radius in "Existing round" mode (same arguments)."""
+        return reround.change_radius_arrays if self.form.existing_round() else api.round_arrays
+
     def schedule_preview(self):
         if self.form.live_preview.isChecked():
             self._timer.start()  # restarts: many quick changes give one computation
@@ -171,7 +193,7 @@ class RoundEdgesPanel:
         self.result = None
         self._preview.clear()
         if not self.seeds:
-            self.form.show_status("Click near a sharp edge of the mesh to select it.")
+            self.form.show_status(self.form.pick_hint())
             return
         self._show_limit()
         self._plan_corners()  # the radius decides some corners (four faces and one ball)
@@ -186,7 +208,7 @@ class RoundEdgesPanel:
             self.form.show_status("Computing the preview ... (Esc stops it)")
             # No progress indicator: its event filter would eat the keys typed meanwhile.
             with self._cancellable() as watch, progress.busy("Preview", indicator=False) as token:
-                self.result = api.round_arrays(self.vertices, self.triangles, cancel=token, **parameters)
+                self.result = self._engine()(self.vertices, self.triangles, cancel=token, **parameters)
         except (RoundingError, ValueError) as exc:
             self.result = None
             if getattr(exc, "code", None) == "cancelled":
@@ -306,7 +328,7 @@ class RoundEdgesPanel:
                 f"MeshRound.make_rounding({_doc_expr(self.doc)}.getObject({self.base.Name!r}), "
                 f"{_vectors_code(p['seeds'])}, {_radius_code(p['radius'])}, "
                 f"tolerance={p['tolerance'] or 0.0!r}, feature_angle={p['feature_angle']!r}, "
-                f"reach={p['reach']!r})"]
+                f"reach={p['reach']!r}{_operation_code(self.form.operation())})"]
 
     def _edit_commands(self):
         p = self.parameters()
@@ -316,7 +338,8 @@ class RoundEdgesPanel:
                  f"{obj}.RadiusLawRadii = {[row[3] for row in self.law]!r}",
                  f"{obj}.Tolerance = {p['tolerance'] or 0.0!r}",
                  f"{obj}.FeatureAngle = {p['feature_angle']!r}",
-                 f"{obj}.Reach = {p['reach']!r}"]
+                 f"{obj}.Reach = {p['reach']!r}",
+                 f"{obj}.Operation = {self.form.operation()!r}"]
         if not self._radius_expression:
             lines.insert(1, f"{obj}.Radius = {quantity_value(self.form.radius)!r}")
         return lines
@@ -363,16 +386,22 @@ class RoundEdgesPanel:
         f.remove_seed_button.clicked.connect(lambda: self.remove_seeds(f.selected_seed_rows()))
         f.clear_seeds_button.clicked.connect(lambda: self.remove_seeds(range(len(self.seeds))))
         f.remove_law_button.clicked.connect(self._remove_law_rows)
+        f.pick_target.currentIndexChanged.connect(lambda *_: self._operation_changed())
+
+    def _operation_changed(self):
+        """Sharp edges <-> existing round: the seeds and radius points of the one mean nothing in the other."""
+        self.seeds, self.law = [], []
+        self.form.show_law(self.law)
+        self._seeds_changed()
 
     def _seeds_changed(self, retrace=True):
         """After seeds or feature angle changed: list, chains, highlight, preview."""
         self.form.show_seeds(self.seeds)
         if retrace:
-            self.chain_wires = []
+            self.chain_wires, self.strips = [], []
             if self.seeds:
                 try:
-                    self.chain_wires = api.trace_arrays(self.vertices, self.triangles, self.seeds,
-                                                        self.feature_angle())
+                    self._find(self.seeds)
                 except RoundingError as exc:
                     self._show_error(str(exc))
         self._measure_limits()
@@ -381,82 +410,6 @@ class RoundEdgesPanel:
         self.schedule_preview()
         if not self.seeds:
             self.update_preview()  # shows the hint and clears an old preview at once
-
-    def _measure_limits(self):
-        """The largest radius of each picked chain (max_radius; a fraction of a second), shown beside the
-        radius field."""
-        self.limits = []
-        if self.seeds:
-            try:
-                self.limits = radius_limits.max_radius_arrays(self.vertices, self.triangles, self.seeds,
-                                                              self.feature_angle(), self.form.reach.value())
-            except RoundingError:
-                pass  # the trace's own error is shown already
-        self._show_limit()
-
-    def _plan_corners(self):
-        """Where the picked chains meet and how each corner will be blended (api.plan_arrays), shown under the
-        seeds; the corner round_edges would refuse, in red, with its reason."""
-        self.plan = None
-        fault = ""  # a flaw of the mesh at a corner (a flipped facet there), which no other line shows
-        if len(self.chain_wires) > 1:
-            try:
-                p = self.parameters()
-                self.plan = api.plan_arrays(self.vertices, self.triangles, p["seeds"], p["radius"], p["tolerance"],
-                                            p["feature_angle"], p["reach"])
-            except RoundingError as e:
-                fault = str(e) if e.code == "non_manifold_input" else ""  # others: the trace's own, shown already
-            except ValueError:
-                pass  # the table's own error is shown already
-        if fault:
-            self.form.show_corners("Corner not blended: " + fault, error=True)
-        else:
-            self.form.show_corners(self.plan.summary() if self.plan else "", error=bool(self.plan and self.plan.refusal))
-
-    def corner_marks(self):
-        """[(point, color)]: a marker per corner of the plan, coloured by its blend."""
-        return [(tuple(c["vertex"]), overlays.CORNER_COLORS[c["kind"]]) for c in self.plan.corners] if self.plan else []
-
-    def radius_past_limit(self):
-        """'' or the sentence saying the constant radius is past the largest that fits (and why)."""
-        if self.law or not self.limits:
-            return ""
-        radius = quantity_value(self.form.radius)
-        tightest = min(self.limits, key=lambda lim: lim.radius)
-        if radius <= tightest.radius:
-            return ""
-        return f"r = {radius:g} mm is too large: the largest that fits is {tightest.radius:.4g} mm ({tightest.reason})"
-
-    def _show_limit(self):
-        past = self.radius_past_limit()
-        if past:
-            self.form.show_limit(past, error=True)
-        elif self.limits:
-            tightest = min(self.limits, key=lambda lim: lim.radius)
-            self.form.show_limit(f"{tightest.radius:.4g} mm ({radius_limits.WHY_TEXT.get(tightest.why, tightest.why)})")
-        else:
-            self.form.show_limit("")
-        self._show_rules()
-
-    def rule_check(self):
-        """check_rules' rows for the radius (a law's smallest), the sheet thickness and the tool type, against
-        the picked chains' limits; [] when there is nothing to check (no chain, or no thickness and no limit)."""
-        thickness = quantity_value(self.form.thickness) or None
-        limits = None if self.law else (self.limits or None)
-        if not self.seeds or (thickness is None and limits is None):
-            return []
-        radius = min(row[3] for row in self.law) if self.law else quantity_value(self.form.radius)
-        try:
-            return radius_limits.check_rules(limits, radius, thickness, self.form.tool_type())
-        except RoundingError:
-            return []  # a radius of 0: the preview says why
-
-    def _show_rules(self):
-        """The rule line beside the limit (radius_limits.rule_line: the flags and why in red, or that the k.t
-        rule is met), and what the automatic tolerance is for the radius."""
-        self.form.show_rules(*radius_limits.rule_line(self.rule_check(), self.form.tool_type()))
-        largest = max((row[3] for row in self.law), default=0.0) if self.law else quantity_value(self.form.radius)
-        self.form.show_automatic_tolerance(largest)
 
     def _law_edited(self):
         try:
@@ -478,22 +431,12 @@ class RoundEdgesPanel:
         self._update_radius_field()
         chains = [shapes.wire_points(w) for w in self.chain_wires]
         corners = self.corner_marks()
-        self._marks.show(overlays.polylines_node(chains, overlays.CHAIN_COLOR, width=5.0),
+        self.form.show_found(existing_round.found_text(self.strips))
+        self._marks.show(existing_round.strips_node(self.vertices, self.triangles, self.strips),
+                         overlays.polylines_node(chains, overlays.CHAIN_COLOR, width=5.0),
                          overlays.markers_node([tuple(s) for s in self.seeds], overlays.SEED_COLOR),
                          overlays.markers_node([row[:3] for row in self.law], overlays.LAW_COLOR),
                          *(overlays.markers_node([point], color) for point, color in corners))
-
-    def _update_radius_field(self):
-        """The constant radius is unused with a radius law, and fixed by an expression if it has one."""
-        if self._radius_expression:
-            reason = f"Radius is set by the expression {self._radius_expression}"
-        elif self.law:
-            reason = "The variable radius table is used; empty it to use a constant radius"
-        else:
-            reason = None
-        self.form.radius.setEnabled(reason is None)
-        self.form.radius.setToolTip(reason or "Rolling ball radius")
-        self._show_rules()  # the rule line and the automatic tolerance follow the radius (or the law)
 
     def _show_error(self, message):
         self.error = message
@@ -555,7 +498,7 @@ def _apply_view_state(saved):
 
 
 def _feature_values(feature):
-    return dict(seeds=list(feature.Seeds),
+    return dict(seeds=list(feature.Seeds), operation=getattr(feature, "Operation", ROUND),
                 law=[(p.x, p.y, p.z, r) for p, r in zip(feature.RadiusLaw, feature.RadiusLawRadii)],
                 radius=feature.Radius.Value, tolerance=feature.Tolerance.Value,
                 feature_angle=feature.FeatureAngle.Value, reach=feature.Reach)
@@ -579,6 +522,11 @@ def _summary(report, tolerance, final_tolerance):
         text += f" (Previewed at tolerance {tolerance:.3g} mm; OK rounds at {final_tolerance:.3g} mm.)"
     note = api.quality_note(report)
     return f"{text} {note}" if note else text
+
+
+def _operation_code(operation):
+    """make_rounding's operation argument, when it is not the default."""
+    return "" if operation == ROUND else f", operation={operation!r}"
 
 
 def _doc_expr(doc):

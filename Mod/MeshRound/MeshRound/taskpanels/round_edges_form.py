@@ -3,8 +3,15 @@ import FreeCADGui
 from PySide import QtCore, QtGui
 
 from .. import errors, inputs, radius_limits
+from ..objects.rounding import CHANGE_RADIUS, ROUND
 
 PICK_SEED, PICK_LAW_POINT = "seed", "law"
+# what a click picks -> the Rounding's Operation it makes, and the panel's title and hint in that mode
+PICK_TARGETS = {"Sharp edges": ROUND, "Existing round": CHANGE_RADIUS}
+TITLES = {ROUND: "Round sharp edges", CHANGE_RADIUS: "Change round radius"}
+HINTS = {ROUND: "Click on the mesh next to a sharp edge: its whole chain is selected.",
+         CHANGE_RADIUS: "Click on an existing round: it is recognised, its radius measured, and it is made "
+                        "again at the radius below (0: sharp)."}
 LAW_COLUMNS = ("X", "Y", "Z", "Radius")
 
 
@@ -27,11 +34,11 @@ def quantity_value(box):
 class RoundEdgesForm(QtGui.QWidget):
     """Seeds list, pick mode, radius (constant or law table), options, preview switch, status line."""
 
-    def __init__(self, radius, tolerance, feature_angle, reach, thickness, tool):
+    def __init__(self, radius, tolerance, feature_angle, reach, thickness, tool, operation=ROUND):
         super().__init__()
-        self.setWindowTitle("Round sharp edges")
+        self.setWindowTitle(TITLES[operation])
         layout = QtGui.QVBoxLayout(self)
-        layout.addWidget(self._edges_group())
+        layout.addWidget(self._edges_group(operation))
         layout.addWidget(self._radius_group(radius, thickness, tool))
         layout.addWidget(self._options_group(tolerance, feature_angle, reach))
         self.live_preview = QtGui.QCheckBox("Live preview")
@@ -43,12 +50,21 @@ class RoundEdgesForm(QtGui.QWidget):
         layout.addWidget(self.status)
         layout.addStretch()
 
-    def _edges_group(self):
+    def _edges_group(self, operation):
         group = QtGui.QGroupBox("Edges")
         layout = QtGui.QVBoxLayout(group)
-        hint = QtGui.QLabel("Click on the mesh next to a sharp edge: its whole chain is selected.")
-        hint.setWordWrap(True)
-        layout.addWidget(hint)
+        row = QtGui.QFormLayout()
+        self.pick_target = QtGui.QComboBox()
+        self.pick_target.addItems(list(PICK_TARGETS))
+        self.pick_target.setCurrentIndex(list(PICK_TARGETS.values()).index(operation))
+        self.pick_target.setToolTip("Sharp edges: round them.  Existing round: change its radius (the Rounding's "
+                                    "Operation).")
+        row.addRow("Pick:", self.pick_target)
+        layout.addLayout(row)
+        self.hint = QtGui.QLabel(HINTS[operation])
+        self.hint.setWordWrap(True)
+        layout.addWidget(self.hint)
+        self.pick_target.currentIndexChanged.connect(lambda *_: self.hint.setText(self.pick_hint()))
         self.seed_list = QtGui.QListWidget()
         self.seed_list.setSelectionMode(QtGui.QAbstractItemView.ExtendedSelection)
         self.seed_list.setMaximumHeight(90)
@@ -63,6 +79,9 @@ class RoundEdgesForm(QtGui.QWidget):
         self.corners = QtGui.QLabel("")
         self.corners.setWordWrap(True)
         layout.addWidget(self.corners)
+        self.found = QtGui.QLabel("")  # "Existing round": the radius each picked round has
+        self.found.setWordWrap(True)
+        layout.addWidget(self.found)
         layout.addWidget(QtGui.QLabel("A click on the mesh adds:"))
         self.pick_seed = QtGui.QRadioButton("an edge to round")
         self.pick_law = QtGui.QRadioButton("a variable-radius point")
@@ -137,6 +156,19 @@ class RoundEdgesForm(QtGui.QWidget):
         return group
 
     # ---------------------------------------------------------------- reading and writing values
+    def operation(self):
+        """The Rounding Operation the pick target makes (objects.rounding ROUND or CHANGE_RADIUS)."""
+        return PICK_TARGETS[self.pick_target.currentText()]
+
+    def existing_round(self):
+        return self.operation() == CHANGE_RADIUS
+
+    def pick_hint(self):
+        return HINTS[self.operation()]
+
+    def show_found(self, text):
+        self.found.setText(text)
+
     def pick_mode(self):
         return PICK_LAW_POINT if self.pick_law.isChecked() else PICK_SEED
 
