@@ -50,7 +50,7 @@ def run():
                     "status": form.status.text(), "status_style": form.status.styleSheet(),
                     "strip_facets": [s["strip_facets"] for s in panel.strips],
                     "highlighted_facets": highlighted_facets(panel),
-                    "listed_facets": len(existing_round.strip_facets(panel.vertices, panel.triangles, panel.strips))})
+                    "listed_facets": len(existing_round.strip_facets(panel.strips))})
     step("highlight_screenshot", screenshot("gui_reround_pick.png"))
     click(view, ON_TOP_FACE)
     step("flat_face", {"seeds": len(panel.seeds), "status": form.status.text(), "style": form.status.styleSheet()})
@@ -62,6 +62,7 @@ def run():
     press_task_button("ok")
     rounding = doc.getObject("Rounding")
     step("made", {"operation": rounding.Operation, "found": list(rounding.FoundRadius),
+                  "icon": rounding.ViewObject.Proxy.getIcon(),
                   "radius": rounding.Radius.Value, "state": rounding.State, "panel_closed": active_panel() is None})
     FreeCADGui.ActiveDocument.setEdit(rounding.Name, 0)
     FreeCADGui.updateGui()

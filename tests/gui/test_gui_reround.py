@@ -50,6 +50,6 @@ def test_the_preview_and_ok_change_the_radius(observed):
     made = observed["made"]
     assert made["operation"] == "Change radius of existing round" and made["radius"] == 8.0
     assert made["found"] == [pytest.approx(5.0, rel=0.01)] and "Invalid" not in made["state"]
-    assert made["panel_closed"]
+    assert made["panel_closed"] and made["icon"].endswith("MeshRound_ChangeRadius.svg")
     assert observed["edit"] == {"pick": "Existing round", "found": "Found radius: 5 mm"}
     assert os.path.isfile(observed["preview_screenshot"])

@@ -11,14 +11,17 @@ from . import overlays
 
 
 def recognise(vertices, triangles, seeds, feature_angle, reach):
-    """(strips, wires): the report row of the round each seed is on, and its rebuilt sharp edge as a wire.
-    RoundingError (the code first, e.g. "not_a_round: ...") when a seed is not on a round."""
+    """(strips, wires): the report row of the round each seed is on (with "facets": the input's facets that
+    make it, reround.strip_facet_indices), and its rebuilt sharp edge as a wire.  RoundingError (the code
+    first, e.g. "not_a_round: ...") when a seed is not on a round."""
     try:
         result = reround.change_radius_arrays(vertices, triangles, seeds, 0, feature_angle=feature_angle,
                                               reach=reach)
     except RoundingError as exc:
         raise reround.named(exc) from None
     strips = result.report["strips"]
+    for strip in strips:
+        strip["facets"] = reround.strip_facet_indices(vertices, triangles, strip)
     return strips, shapes.polyline_wires([strip["corner"] for strip in strips])
 
 
@@ -35,13 +38,11 @@ def _radius_text(strip):
     return f"{strip['radius_min']:.4g} to {strip['radius_max']:.4g} mm (variable)"
 
 
-def strip_facets(vertices, triangles, strips):
-    """The input's facets (indices) that make the rounds `strips`, all of them."""
-    found = [reround.strip_facet_indices(vertices, triangles, strip) for strip in strips]
-    return sorted({int(i) for facets in found for i in facets})
+def strip_facets(strips):
+    """The input's facets (indices) that make the rounds `strips` (recognise's rows), all of them."""
+    return sorted({int(i) for strip in strips for i in strip["facets"]})
 
 
 def strips_node(vertices, triangles, strips):
     """The highlight of the rounds' facets (their edges, in overlays.STRIP_COLOR)."""
-    return overlays.facet_edges_node(vertices, triangles[strip_facets(vertices, triangles, strips)],
-                                     overlays.STRIP_COLOR)
+    return overlays.facet_edges_node(vertices, triangles[strip_facets(strips)], overlays.STRIP_COLOR)

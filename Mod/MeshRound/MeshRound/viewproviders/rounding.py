@@ -7,6 +7,7 @@ Part feature) and editing in the task panel.  The class path is stored in .FCStd
 import FreeCAD
 import FreeCADGui
 
+from ..objects.rounding import CHANGE_RADIUS, ROUND
 from ..resources import icon_path
 
 EDIT_MODE_DEFAULT = 0  # FreeCAD's "default" edit mode: our task panel (1 = transform, etc. stay FreeCAD's)
@@ -21,7 +22,9 @@ class ViewProviderRounding:
         self.Object = vobj.Object
 
     def getIcon(self):
-        return icon_path("MeshRound_RoundEdges.svg")
+        """The Change round radius icon for a Rounding in that operation, else Round sharp edges'."""
+        changes = getattr(getattr(self, "Object", None), "Operation", ROUND) == CHANGE_RADIUS
+        return icon_path("MeshRound_ChangeRadius.svg" if changes else "MeshRound_RoundEdges.svg")
 
     def claimChildren(self):
         obj = self.Object
