@@ -4,7 +4,8 @@ Input: the mesh of OCCT's 5 mm fillet of the 60 x 40 x 30 box's top back edge (t
 coarse box, 2-3 elements across the round) as a Mesh::Feature.  The feature in change mode:
   * at 8 mm: valid, FoundRadius / Statistics give the fillet's 5 mm within 1 %, and the output's round
     is found at 8 mm within 1 % (change_radius measuring the feature's own mesh);
-  * Radius changed to 3.5 mm and recomputed: the output's round is found at 3.5 mm;
+  * Radius changed to 3.5 mm and recomputed: the output's round is found at 3.5 mm; the band controls
+    (ElementAngle) reach the new round;
   * Radius 0: the sharp box again (the enclosed volume the sharp solid's), also made so by make_rounding;
   * a seed on a flat face: the feature in error naming not_a_round, its last good mesh and the Base kept;
   * saved and reopened: the Operation kept; a file without the Operation property (older versions)
@@ -69,6 +70,14 @@ def test_changing_the_radius_recomputes(doc, change):
     assert not is_invalid(change), change.getStatusString()
     assert abs(found_radius(change.Mesh, 3.5) - 3.5) <= FOUND_WITHIN * 3.5
     assert abs(change.FoundRadius[0] - R0) <= FOUND_WITHIN * R0  # the input's round, as before
+
+
+def test_the_band_controls_apply_to_the_new_round(doc, change):
+    rows = change.Statistics["band_elements"]
+    change.ElementAngle = 10.0  # at most 10 deg of the 90 deg profile per element across: 9 rows at least
+    doc.recompute()
+    assert not is_invalid(change), change.getStatusString()
+    assert int(change.Statistics["band_elements"]) > int(rows)
 
 
 def test_radius_zero_sharpens(doc, rounded_box, change):
