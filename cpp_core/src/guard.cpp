@@ -122,80 +122,131 @@ bool triangles_cross(const Triangle& s, const Triangle& t, double slack) {
   return false;
 }
 
-// Uniform grid over the boxes of the candidate facets; facets spanning many cells are kept apart.
+// Uniform grid over the made facets' boxes; a facet spanning many cells is kept apart, and a query box over
+// many cells visits every facet instead of walking the cells.
 class FacetGrid {
  public:
-  FacetGrid(double cell) : cell_(cell) {}
-  void insert(int id, const Vec3& lo, const Vec3& hi) {
-    const auto a = cell_of(lo), b = cell_of(hi);
-    if ((b[0] - a[0] + 1) * (b[1] - a[1] + 1) * (b[2] - a[2] + 1) > kMaxCells) {
-      oversized_.push_back(id);
-      return;
+  FacetGrid(double cell, const std::vector<std::pair<Vec3, Vec3>>& boxes) : cell_(cell), boxes_(boxes) {
+    for (size_t id = 0; id < boxes.size(); ++id) {
+      const auto a = cell_of(boxes[id].first), b = cell_of(boxes[id].second);
+      if (cells_in(a, b) > kMaxCells) {
+        oversized_.push_back(int(id));
+        continue;
+      }
+      for (long i = a[0]; i <= b[0]; ++i)
+        for (long j = a[1]; j <= b[1]; ++j)
+          for (long k = a[2]; k <= b[2]; ++k) cells_[key(i, j, k)].push_back(int(id));
     }
-    for (long i = a[0]; i <= b[0]; ++i)
-      for (long j = a[1]; j <= b[1]; ++j)
-        for (long k = a[2]; k <= b[2]; ++k) cells_[key(i, j, k)].push_back(id);
   }
+  // Each facet whose box meets lo..hi, once or more.
   template <class Visit>
   void query(const Vec3& lo, const Vec3& hi, Visit&& visit) const {
+    auto meets = [&](int id) {
+      return !(boxes_[size_t(id)].first.array() > hi.array()).any() && !(boxes_[size_t(id)].second.array() < lo.array()).any();
+    };
     const auto a = cell_of(lo), b = cell_of(hi);
+    if (cells_in(a, b) > kMaxCells) {
+      for (size_t id = 0; id < boxes_.size(); ++id)
+        if (meets(int(id))) visit(int(id));
+      return;
+    }
     for (long i = a[0]; i <= b[0]; ++i)
       for (long j = a[1]; j <= b[1]; ++j)
         for (long k = a[2]; k <= b[2]; ++k) {
           auto it = cells_.find(key(i, j, k));
           if (it != cells_.end())
-            for (int id : it->second) visit(id);
+            for (int id : it->second)
+              if (meets(id)) visit(id);
         }
-    for (int id : oversized_) visit(id);
+    for (int id : oversized_)
+      if (meets(id)) visit(id);
   }
 
  private:
-  static constexpr long kMaxCells = 512;  // a box over more cells goes to the oversized list
+  static constexpr double kMaxCells = 512;  // a box over more cells is not walked cell by cell
+  static double cells_in(const std::array<long, 3>& a, const std::array<long, 3>& b) {
+    return double(b[0] - a[0] + 1) * double(b[1] - a[1] + 1) * double(b[2] - a[2] + 1);
+  }
   std::array<long, 3> cell_of(const Vec3& p) const {
-    return {long(std::floor(p.x() / cell_)), long(std::floor(p.y() / cell_)), long(std::floor(p.z() / cell_))};
+    const auto at = [&](double x) { return long(std::clamp(std::floor(x / cell_), -1e15, 1e15)); };
+    return {at(p.x()), at(p.y()), at(p.z())};
   }
   static std::uint64_t key(long i, long j, long k) {
     return (std::uint64_t(i & 0x1fffff) << 42) | (std::uint64_t(j & 0x1fffff) << 21) | std::uint64_t(k & 0x1fffff);
   }
   double cell_;
+  const std::vector<std::pair<Vec3, Vec3>>& boxes_;
   std::unordered_map<std::uint64_t, std::vector<int>> cells_;
   std::vector<int> oversized_;
 };
 
-// A made facet crossing another made facet, or a kept facet of `kept`: the place of the first found.
-bool find_crossing(const MeshEdit& edit, const std::vector<Facet>& kept, double slack, Vec3* where) {
+Triangle triangle_of(const MeshEdit& edit, const Facet& f) {
+  Triangle t;
+  for (int k = 0; k < 3; ++k) t.p[k] = edit.point(f[k]);
+  t.normal = (t.p[1] - t.p[0]).cross(t.p[2] - t.p[0]);
+  return t;
+}
+
+std::pair<Vec3, Vec3> box_of(const Triangle& t) {
+  return {t.p[0].cwiseMin(t.p[1]).cwiseMin(t.p[2]), t.p[0].cwiseMax(t.p[1]).cwiseMax(t.p[2])};
+}
+
+// A made facet crossing another made facet, or a kept one: the place of the first found. The kept facets
+// tested are every input facet left in place whose box meets a made facet's (the band's neighbours, and
+// any farther facet a round reaches into: a wall across a thin part, a face the band folds over).
+bool find_crossing(const MeshEdit& edit, const std::unordered_set<int>& around, double slack, Vec3* where) {
   const std::vector<Facet>& made = edit.added;
   if (made.empty()) return false;
-  std::vector<Facet> all(made);
-  all.insert(all.end(), kept.begin(), kept.end());
-  std::vector<Triangle> tri(all.size());
-  std::vector<std::pair<Vec3, Vec3>> box(all.size());
+  std::vector<Triangle> tri(made.size());
+  std::vector<std::pair<Vec3, Vec3>> box(made.size());
   double edge_sum = 0;
-  for (size_t i = 0; i < all.size(); ++i) {
-    for (int k = 0; k < 3; ++k) tri[i].p[k] = edit.point(all[i][k]);
-    tri[i].normal = (tri[i].p[1] - tri[i].p[0]).cross(tri[i].p[2] - tri[i].p[0]);
-    box[i] = {tri[i].p[0].cwiseMin(tri[i].p[1]).cwiseMin(tri[i].p[2]), tri[i].p[0].cwiseMax(tri[i].p[1]).cwiseMax(tri[i].p[2])};
-    if (i < made.size()) edge_sum += (box[i].second - box[i].first).norm();
+  Vec3 lo = Vec3::Constant(INFINITY), hi = Vec3::Constant(-INFINITY);
+  for (size_t i = 0; i < made.size(); ++i) {
+    tri[i] = triangle_of(edit, made[i]);
+    box[i] = box_of(tri[i]);
+    box[i].first.array() -= slack, box[i].second.array() += slack;
+    edge_sum += (box[i].second - box[i].first).norm();
+    lo = lo.cwiseMin(box[i].first), hi = hi.cwiseMax(box[i].second);
   }
-  FacetGrid grid(std::max(2 * edge_sum / double(made.size()), 1e-9));
-  for (size_t i = 0; i < all.size(); ++i) grid.insert(int(i), box[i].first, box[i].second);
+  const FacetGrid grid(std::max(2 * edge_sum / double(made.size()), 1e-9), box);
+  auto found = [&](const Triangle& t, const Triangle& u, const char* kind) {
+    if (t.normal.squaredNorm() == 0 || u.normal.squaredNorm() == 0 || !triangles_cross(t, u, slack))
+      return false;  // (no area: counted as degenerate)
+    if (std::getenv("MESHROUND_DEBUG")) {  // the two facets, for whoever traces the cause
+      std::fprintf(stderr, "guard: a made facet crosses %s facet:\n", kind);
+      for (const Triangle* x : {&t, &u}) std::fprintf(stderr, "  (%.6f %.6f %.6f) (%.6f %.6f %.6f) (%.6f %.6f %.6f)\n", x->p[0].x(), x->p[0].y(), x->p[0].z(), x->p[1].x(), x->p[1].y(), x->p[1].z(), x->p[2].x(), x->p[2].y(), x->p[2].z());
+    }
+    *where = (t.p[0] + t.p[1] + t.p[2]) / 3;
+    return true;
+  };
   for (size_t i = 0; i < made.size(); ++i) {
     bool hit = false;
-    const Vec3 lo = box[i].first.array() - slack, hi = box[i].second.array() + slack;
-    grid.query(lo, hi, [&](int j) {
-      if (hit || size_t(j) == i || (size_t(j) < made.size() && size_t(j) < i)) return;
-      if ((box[j].first.array() > hi.array()).any() || (box[j].second.array() < lo.array()).any()) return;
-      if (tri[i].normal.squaredNorm() == 0 || tri[j].normal.squaredNorm() == 0) return;  // counted as degenerate
-      hit = triangles_cross(tri[i], tri[j], slack);
-      if (hit && std::getenv("MESHROUND_DEBUG")) {  // the two facets, for whoever traces the cause
-        std::fprintf(stderr, "guard: made facet %zu crosses %s facet:\n", i, size_t(j) >= made.size() ? "a kept" : "a made");
-        for (auto* t : {&tri[i], &tri[size_t(j)]}) std::fprintf(stderr, "  (%.6f %.6f %.6f) (%.6f %.6f %.6f) (%.6f %.6f %.6f)\n", t->p[0].x(), t->p[0].y(), t->p[0].z(), t->p[1].x(), t->p[1].y(), t->p[1].z(), t->p[2].x(), t->p[2].y(), t->p[2].z());
-      }
+    grid.query(box[i].first, box[i].second, [&](int j) {
+      if (!hit && size_t(j) > i) hit = found(tri[i], tri[size_t(j)], "a made");
     });
-    if (hit) {
-      *where = (tri[i].p[0] + tri[i].p[1] + tri[i].p[2]) / 3;
-      return true;
-    }
+    if (hit) return true;
+  }
+  auto crosses_kept = [&](const Triangle& t) {
+    const auto [flo, fhi] = box_of(t);
+    if ((flo.array() > hi.array()).any() || (fhi.array() < lo.array()).any()) return false;
+    bool hit = false;
+    grid.query(flo, fhi, [&](int j) {
+      if (!hit) hit = found(tri[size_t(j)], t, "a kept");
+    });
+    return hit;
+  };
+  // The kept facets around the changed vertices (their moved vertices where they went), then every other
+  // input facet, whose vertices are the input's.
+  const MeshTopology& in = edit.input;
+  for (int f : around)
+    if (!edit.removed.count(f) && crosses_kept(triangle_of(edit, {in.F(f, 0), in.F(f, 1), in.F(f, 2)}))) return true;
+  for (int f = 0; f < in.num_facets(); ++f) {
+    Triangle t;
+    for (int k = 0; k < 3; ++k) t.p[k] = in.corner(f, k);
+    const auto [flo, fhi] = box_of(t);
+    if ((flo.array() > hi.array()).any() || (fhi.array() < lo.array()).any() || around.count(f)) continue;
+    t.normal = (t.p[1] - t.p[0]).cross(t.p[2] - t.p[0]);
+    if (crosses_kept(t)) return true;
   }
   return false;
 }
@@ -281,7 +332,7 @@ void check_result(const MeshEdit& edit, const SharpChain& chain, double reach, d
     if (edit.moved.count(f[0]) || edit.moved.count(f[1]) || edit.moved.count(f[2])) check_shape(f);
 
   Vec3 where;
-  if (find_crossing(edit, kept, slack, &where)) refuse("facets that cross each other", where);
+  if (find_crossing(edit, around, slack, &where)) refuse("facets that cross each other", where);
 }
 
 bool flawed_near(const MeshTopology& mesh, const Vec3& where, double distance) {

@@ -112,4 +112,36 @@ TEST(OutputCheck, NamesANewHoleNextToAHoleOfTheInputAsTheInputs) {
   }
 }
 
+TEST(OutputCheck, RefusesANewFacetThroughAKeptFacetAwayFromTheBand) {
+  // A kept facet that shares no vertex with the edit (a wall across a thin part, a loose piece) still
+  // counts: the fan dipped under the top face runs through a small upright facet standing there.
+  Scene s;
+  ASSERT_GE(s.facet, 0);
+  const Vec3 c = s.centroid();
+  TriMesh with_wall = s.m;
+  const int n = int(with_wall.V.rows()), m = int(with_wall.F.rows());
+  with_wall.V.conservativeResize(n + 3, 3);
+  with_wall.V.row(n) = (c + Vec3(-1, 0, -0.9)).transpose();
+  with_wall.V.row(n + 1) = (c + Vec3(1, 0, -0.9)).transpose();
+  with_wall.V.row(n + 2) = (c + Vec3(0, 0, -0.1)).transpose();
+  with_wall.F.conservativeResize(m + 1, 3);
+  with_wall.F.row(m) << n, n + 1, n + 2;
+  const MeshTopology mesh(with_wall.V, with_wall.F);
+  auto edit_with_dip = [&](double dip) {
+    MeshEdit edit{mesh};
+    edit.removed.insert(s.facet);
+    const int apex = edit.add_point(c - Vec3(0, 0, dip));
+    for (int k = 0; k < 3; ++k) edit.added.push_back({s.corner(k), s.corner((k + 1) % 3), apex});
+    return edit;
+  };
+  EXPECT_NO_THROW(check_result(edit_with_dip(0.05), s.chain, 15, 0.05));  // above the wall's top: clear
+  try {
+    check_result(edit_with_dip(0.5), s.chain, 15, 0.05);
+    FAIL() << "a facet through a kept facet passed the check";
+  } catch (const RoundingError& e) {
+    EXPECT_EQ(e.code, ErrorCode::ResultInvalid);
+    EXPECT_NE(std::string(e.what()).find("cross each other"), std::string::npos) << e.what();
+  }
+}
+
 }  // namespace

@@ -3,6 +3,7 @@
 // finding. Memory errors and undefined behaviour are the sanitizers' to report.
 #pragma once
 #include <Standard_Failure.hxx>
+#include <chrono>
 #include <cstdio>
 #include <cstdlib>
 #include <string>
@@ -41,9 +42,12 @@ inline std::string round_case(const std::uint8_t* data, std::size_t size) {
     double rmax = c.options.radius;
     for (const RadiusControl& rc : c.options.radius_law) rmax = std::max(rmax, rc.radius);
     s.end_allowance = 1.5 * c.options.reach * rmax;
+    const auto checking = std::chrono::steady_clock::now();
     const std::string bad = check_sound(s);
     if (verbose()) {
-      std::fprintf(stderr, "rounded: %ld facets, %s; seconds:", long(res.triangles.rows()), bad.empty() ? "sound" : bad.c_str());
+      const std::chrono::duration<double> checked = std::chrono::steady_clock::now() - checking;
+      std::fprintf(stderr, "rounded: %ld facets, %s (checked in %.3f s); seconds:", long(res.triangles.rows()),
+                   bad.empty() ? "sound" : bad.c_str(), checked.count());
       for (const auto& [pass, t] : res.report.seconds) std::fprintf(stderr, " %s %.3f", pass.c_str(), t);
       std::fprintf(stderr, "\n");
     }

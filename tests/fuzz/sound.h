@@ -6,6 +6,8 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <functional>
 #include <map>
@@ -20,7 +22,36 @@ namespace meshround::fuzz {
 
 // ---------------------------------------------------------------- exact predicates
 namespace exact {
-using Expansion = std::vector<double>;  // non-overlapping, increasing magnitude, no zeros
+// Non-overlapping components, increasing magnitude, no zeros; on the stack (orient3d's largest
+// expansion has 192 components): the harness runs under ASan, where a heap allocation per product
+// made the check slower than the rounding it checks.
+class Expansion {
+ public:
+  Expansion() = default;
+  Expansion(const Expansion& o) : n_(o.n_) { std::copy(o.v_, o.v_ + o.n_, v_); }
+  Expansion& operator=(const Expansion& o) {
+    n_ = o.n_;
+    std::copy(o.v_, o.v_ + o.n_, v_);
+    return *this;
+  }
+  void push_back(double x) {
+    if (n_ == kCapacity) std::abort();  // cannot happen for the predicates below
+    v_[n_++] = x;
+  }
+  void reserve(int) {}
+  bool empty() const { return n_ == 0; }
+  int size() const { return n_; }
+  double* begin() { return v_; }
+  double* end() { return v_ + n_; }
+  const double* begin() const { return v_; }
+  const double* end() const { return v_ + n_; }
+  double operator[](int i) const { return v_[i]; }
+
+ private:
+  static constexpr int kCapacity = 256;
+  double v_[kCapacity];
+  int n_ = 0;
+};
 
 inline void two_sum(double a, double b, double& x, double& y) {
   x = a + b;
@@ -75,8 +106,8 @@ inline Expansion neg(Expansion e) {
   return e;
 }
 inline int sign(const Expansion& e) {
-  for (auto it = e.rbegin(); it != e.rend(); ++it)
-    if (*it != 0) return *it > 0 ? 1 : -1;
+  for (int i = e.size() - 1; i >= 0; --i)
+    if (e[i] != 0) return e[i] > 0 ? 1 : -1;
   return 0;
 }
 
@@ -243,6 +274,26 @@ inline int boundary_loops(const Triangles& F, const std::unordered_map<std::uint
   return loops;
 }
 
+// Two facets that cross by more than a touch at the coordinates' precision. The result is kept as float32
+// by FreeCAD (a relative 6e-8), so facets whose edges pass within that of each other only touch; each is
+// shrunk towards its middle by `shrink` (1e-6 of the coordinates' magnitude: the engine's on-plane slack,
+// on_plane_slack in mesh.h) and the exact test is made again.
+inline bool cross_beyond_precision(const Points& V, const std::array<int, 3>& t, const std::array<int, 3>& u, double shrink) {
+  if (!triangles_intersect(V, t, u)) return false;
+  auto P = [&](int v) -> Vec3 { return V.row(v).transpose(); };
+  Points W(6, 3);
+  const std::array<int, 3>* tri[2] = {&t, &u};
+  for (int i = 0; i < 2; ++i) {
+    const Vec3 mid = (P((*tri[i])[0]) + P((*tri[i])[1]) + P((*tri[i])[2])) / 3;
+    for (int k = 0; k < 3; ++k) {
+      const Vec3 p = P((*tri[i])[k]);
+      const double d = (mid - p).norm();
+      W.row(3 * i + k) = (d > shrink ? Vec3(p + shrink / d * (mid - p)) : mid).transpose();
+    }
+  }
+  return triangles_intersect(W, {0, 1, 2}, {3, 4, 5});
+}
+
 // "" when the result is sound, else what is wrong (the first defect found).
 inline std::string check_sound(const SoundnessInput& s) {
   const Points& Vi = s.V_in;
@@ -355,6 +406,7 @@ inline std::string check_sound(const SoundnessInput& s) {
         for (long z = l[2]; z <= h[2]; ++z) fn((std::uint64_t(x & 0x1fffff) << 42) | (std::uint64_t(y & 0x1fffff) << 21) | std::uint64_t(z & 0x1fffff));
     return true;
   };
+  const double shrink = 1e-6 * Vo.cwiseAbs().maxCoeff();
   std::vector<char> is_fresh(Fo.rows(), 0);
   for (int f : fresh) is_fresh[f] = 1;
   for (int f = 0; f < Fo.rows(); ++f) {
@@ -378,8 +430,13 @@ inline std::string check_sound(const SoundnessInput& s) {
       Vec3 glo, ghi;
       box(g, glo, ghi);
       if ((glo.array() > hi.array()).any() || (ghi.array() < lo.array()).any()) continue;
-      if (triangles_intersect(Vo, t, {Fo(g, 0), Fo(g, 1), Fo(g, 2)}))
+      if (cross_beyond_precision(Vo, t, {Fo(g, 0), Fo(g, 1), Fo(g, 2)}, shrink)) {
+        if (std::getenv("MESHROUND_FUZZ_VERBOSE"))
+          for (int h : {f, g})
+            std::fprintf(stderr, "  facet %d: (%.9g %.9g %.9g) (%.9g %.9g %.9g) (%.9g %.9g %.9g)\n", h, Vo(Fo(h, 0), 0), Vo(Fo(h, 0), 1), Vo(Fo(h, 0), 2),
+                         Vo(Fo(h, 1), 0), Vo(Fo(h, 1), 1), Vo(Fo(h, 1), 2), Vo(Fo(h, 2), 0), Vo(Fo(h, 2), 1), Vo(Fo(h, 2), 2));
         return "new facet " + std::to_string(f) + " intersects facet " + std::to_string(g) + " near " + format_point(P(Vo, t[0]));
+      }
     }
   }
   return "";
