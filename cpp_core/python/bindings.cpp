@@ -227,7 +227,7 @@ py::dict element_quality_py(const py::array& points, const py::array& elements) 
 }
 
 // A RoundResult as the dict CONTRACT.md describes (round_edges' and change_radius' output); `arrays`: the
-// whole mesh as arrays too, `with_delta`: the delta (an edit of the caller's input; change_radius' is not).
+// whole mesh as arrays too, `with_delta`: the delta (an edit of the caller's input).
 py::dict result_dict(const RoundResult& res, bool arrays, bool with_delta) {
   py::dict out;
   out["vertices"] = arrays ? py::object(py::array_t<double>(py::cast(res.vertices))) : py::object(py::none());
@@ -378,8 +378,9 @@ py::dict strip_dict(const StripReport& s) {
 
 py::dict change_radius_py(const py::array& vertices, const py::array& triangles, const py::array& seeds, double radius, double tolerance,
                           double feature_angle, double reach, const py::object& radius_law, long max_new_facets, const py::object& cancel,
-                          double strip_turn, double flat_angle, double fit_tolerance, const py::object& band) {
-  const Call c = to_call(vertices, triangles, seeds, radius, tolerance, feature_angle, reach, radius_law, max_new_facets, cancel, band);
+                          double strip_turn, double flat_angle, double fit_tolerance, const py::object& band, bool arrays) {
+  Call c = to_call(vertices, triangles, seeds, radius, tolerance, feature_angle, reach, radius_law, max_new_facets, cancel, band);
+  c.opt.write_arrays = arrays;
   SharpenOptions so;
   so.strip_turn_deg = strip_turn, so.flat_deg = flat_angle, so.fit_tolerance = fit_tolerance;
   ChangeRadiusResult res;
@@ -387,7 +388,7 @@ py::dict change_radius_py(const py::array& vertices, const py::array& triangles,
     py::gil_scoped_release release;
     res = guarded([&] { return change_radius(c.V, c.F, c.seeds, c.opt, so); });
   }
-  py::dict out = result_dict(res.round, true, false);
+  py::dict out = result_dict(res.round, arrays, true);
   py::list strips;
   for (const StripReport& s : res.strips) strips.append(strip_dict(s));
   out["strips"] = strips;
@@ -446,7 +447,7 @@ PYBIND11_MODULE(_meshround_core, m) {
         py::arg("tolerance") = 0.0, py::arg("feature_angle") = 30.0, py::arg("reach") = 3.0, py::arg("radius_law") = py::none(),
         py::arg("max_new_facets") = 0, py::arg("cancel") = py::none(), py::arg("strip_turn") = SharpenOptions{}.strip_turn_deg,
         py::arg("flat_angle") = SharpenOptions{}.flat_deg, py::arg("fit_tolerance") = SharpenOptions{}.fit_tolerance,
-        py::arg("band") = py::none(),
+        py::arg("band") = py::none(), py::arg("arrays") = true,
         "Sharpen the existing rounds the seeds pick, then round them at `radius` (0: sharpen only); round_edges' dict plus 'strips'.");
   m.def("apply_delta", &apply_delta_py, py::arg("vertices"), py::arg("triangles"), py::arg("delta"),
         "The rounded mesh (vertices, triangles) from the input arrays and round_edges' res['delta'] (CONTRACT.md).");

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <map>
 
+#include "delta.h"
 #include "guard.h"
 #include "strip.h"
 #include "meshround/cancel.h"
@@ -274,7 +275,8 @@ double changed_reach(const MeshEdit& edit, const SharpChain& chain) {
 }
 
 // One strip: recognised, measured, folded, its ends re-meshed, checked and written.
-StripReport sharpen_one(const MeshTopology& mesh, const Vec3& seed, const SharpenOptions& o, Points& V_out, Triangles& F_out) {
+StripReport sharpen_one(const MeshTopology& mesh, const Vec3& seed, const SharpenOptions& o, Points& V_out, Triangles& F_out,
+                        StepOrigin* origin) {
   const RoundStrip strip = recognise_strip(mesh, seed, o);
   StripReport rep;
   measure_law(mesh, strip, o, rep);
@@ -289,7 +291,7 @@ StripReport sharpen_one(const MeshTopology& mesh, const Vec3& seed, const Sharpe
   rep.points_merged = merge_close_points(mesh, strip, edit, fold);
   const SharpChain chain = corner_chain(strip);
   check_result(edit, chain, changed_reach(edit, chain) * 1.001 + 1e-9, fold.setback);
-  write_mesh(edit, V_out, F_out);
+  write_mesh(edit, V_out, F_out, origin);
   rep.opening_deg = std::acos(std::clamp(strip.normal[0].dot(strip.normal[1]), -1.0, 1.0)) * 180 / M_PI;
   rep.convex = true;
   for (int e = 0; e < 2; ++e)
@@ -323,9 +325,9 @@ bool already_done(const std::vector<StripReport>& done, const Vec3& seed) {
   return false;
 }
 
-}  // namespace
-
-SharpenResult sharpen_rounds(const Points& V, const Triangles& F, const std::vector<Vec3>& seeds, const SharpenOptions& o) {
+// sharpen_rounds; `lineage` (if given) follows each vertex and facet of the result back to the input.
+SharpenResult sharpen_traced(const Points& V, const Triangles& F, const std::vector<Vec3>& seeds, const SharpenOptions& o,
+                             Lineage* lineage) {
   validate(o);
   if (seeds.empty()) throw RoundingError(ErrorCode::InvalidInput, "no seed given: pick a point on an existing round");
   SharpenResult out;
@@ -336,10 +338,18 @@ SharpenResult sharpen_rounds(const Points& V, const Triangles& F, const std::vec
     const MeshTopology mesh(out.vertices, out.triangles);
     Points next_V;
     Triangles next_F;
-    out.strips.push_back(sharpen_one(mesh, seed, o, next_V, next_F));
+    StepOrigin step;
+    out.strips.push_back(sharpen_one(mesh, seed, o, next_V, next_F, lineage ? &step : nullptr));
     out.vertices.swap(next_V), out.triangles.swap(next_F);
+    if (lineage) *lineage = follow(*lineage, step);
   }
   return out;
+}
+
+}  // namespace
+
+SharpenResult sharpen_rounds(const Points& V, const Triangles& F, const std::vector<Vec3>& seeds, const SharpenOptions& o) {
+  return sharpen_traced(V, F, seeds, o, nullptr);
 }
 
 ChangeRadiusResult change_radius(const Points& V, const Triangles& F, const std::vector<Vec3>& seeds, const RoundOptions& round,
@@ -351,18 +361,27 @@ ChangeRadiusResult change_radius(const Points& V, const Triangles& F, const std:
   if (!sharpen_only) validate_options(round);
   SharpenOptions o = options;
   o.max_new_facets = std::min(o.max_new_facets, round.max_new_facets);
-  SharpenResult sharp = sharpen_rounds(V, F, seeds, o);
+  Lineage lineage;  // each vertex / facet of the sharpened mesh: the input's it is, or -1
+  SharpenResult sharp = sharpen_traced(V, F, seeds, o, &lineage);
   ChangeRadiusResult out;
   out.strips = sharp.strips;
   out.seconds_sharpen = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   if (sharpen_only) {
-    out.round.vertices.swap(sharp.vertices), out.round.triangles.swap(sharp.triangles);
+    out.round.delta = delta_from_lineage(V, F, sharp.vertices, sharp.triangles, lineage);
+    if (round.write_arrays) out.round.vertices.swap(sharp.vertices), out.round.triangles.swap(sharp.triangles);
     out.round.report.seconds_total = out.seconds_sharpen;
     return out;
   }
   std::vector<Vec3> corner_seeds;
   for (const StripReport& s : sharp.strips) corner_seeds.push_back(0.5 * (s.corner[0] + s.corner[1]));
-  out.round = round_edges(sharp.vertices, sharp.triangles, corner_seeds, round);
+  RoundOptions again = round;
+  again.write_arrays = false;  // made below, with where each vertex and facet comes from
+  out.round = round_edges(sharp.vertices, sharp.triangles, corner_seeds, again);
+  // The two steps as one edit of the caller's input (a solver deck keeps what the band does not touch).
+  StepOrigin step;
+  apply_delta(sharp.vertices, sharp.triangles, out.round.delta, out.round.vertices, out.round.triangles, &step);
+  out.round.delta = delta_from_lineage(V, F, out.round.vertices, out.round.triangles, follow(lineage, step));
+  if (!round.write_arrays) out.round.vertices.resize(0, 3), out.round.triangles.resize(0, 3);
   out.round.report.seconds["sharpen"] = out.seconds_sharpen;
   out.round.report.seconds_total += out.seconds_sharpen;
   return out;

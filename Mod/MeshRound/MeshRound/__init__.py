@@ -9,6 +9,7 @@
     MeshRound.quality_note(res.report)                            # why new facets are under 10 deg, if any
     deck = MeshRound.read_deck("die.k")                           # solver deck (LS-DYNA/Nastran/Abaqus) as arrays
     res = MeshRound.round_deck("die.k", "die_r5.k", seeds, 5)     # round a deck, write it back (decks.py)
+    res = MeshRound.change_radius_deck("die.k", "die_r8.k", seeds, 8)  # a deck's existing round to a new radius
     deck = MeshRound.open_deck("die.k")                           # in FreeCAD: a Deck feature (parts, quads)
     MeshRound.export_deck(rounding, "die_r5.k")                   # a Rounding on a Deck, as the rounded deck
     MeshRound.max_radius(mesh, seeds)                             # largest radius per chain, what stops it
@@ -50,6 +51,7 @@ _EXPORTS = {
     "sweep_features": "sweep",
     "sweep_sheet": "sweep",
     "change_radius": "reround",
+    "change_radius_deck": "decks",
 }
 __all__ = list(_EXPORTS)
 

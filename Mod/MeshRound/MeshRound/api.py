@@ -236,15 +236,12 @@ def _engine_arguments(seeds, radius, tolerance, feature_angle, reach, max_new_fa
 def _round(vertices, triangles, arguments, engine="round_edges", arrays=True):
     """core.<engine> (round_edges, or change_radius: the same result dict) turned into a RoundingResult;
     `arrays`: make result.vertices / triangles now (else on first use, from the input and the delta;
-    change_radius has no delta of its input, its arrays always come with it)."""
+    change_radius' delta is its two steps, sharpening and rounding, as one edit of the input)."""
     vertices = np.ascontiguousarray(vertices, dtype=np.float64)
     triangles = np.ascontiguousarray(triangles, dtype=np.int64)
     seeds = arguments.pop("seeds")
     radius = arguments.pop("radius")
-    if engine == "round_edges":
-        raw = _call_engine(engine, vertices, triangles, seeds, radius, arrays=arrays, **arguments)
-    else:
-        raw = _call_engine(engine, vertices, triangles, seeds, radius, **arguments)
+    raw = _call_engine(engine, vertices, triangles, seeds, radius, arrays=arrays, **arguments)
     check_cancelled(arguments["cancel"])  # asked for after the engine's last poll
     delta = None if raw["delta"] is None else _checked_delta(raw["delta"])
     contacts = [side for pair in raw["contacts"] for side in pair]

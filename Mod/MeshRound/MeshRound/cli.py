@@ -4,7 +4,8 @@
                     [--tolerance T] [--feature-angle A] [--reach K] [--report FILE] [--part PID]
     (IN and OUT both solver decks -- .k .key .dyn / .bdf .nas .dat / .inp, one family -- round the deck
     and write it back with its IDs, parts, sets and other cards kept: MeshRound.decks)
-    meshround reround IN OUT --seed X,Y,Z [--seed ...] --radius R [--tolerance T] [--report FILE]
+    meshround reround IN OUT --seed X,Y,Z [--seed ...] --radius R [--tolerance T] [--report FILE] [--part PID]
+    (IN and OUT both solver decks: the deck's existing round changed, written back: MeshRound.change_radius_deck)
     meshround demo [--out DIR]
     meshround max-radius IN --seed X,Y,Z [...]          (cli_radius.py)
     meshround sweep IN OUTDIR --seed X,Y,Z [...] --radius 3:10:0.5   (IN a mesh, or a solver deck swept as one)
@@ -102,22 +103,7 @@ def build_parser():
     rnd.add_argument("--reach", metavar="K", type=_finite, default=3.0,
                      help="re-mesh facets within K x radius of a chain (default 3)")
     rnd.add_argument("--report", metavar="FILE", help="write the rounding report as JSON")
-    band = rnd.add_argument_group("band elements (each off by default; the finer rule wins)")
-    band.add_argument("--element-angle", metavar="DEG", type=_finite, default=None,
-                      help="at most DEG degrees of the round's profile per element across it (e.g. 10)")
-    band.add_argument("--element-length", metavar="L", type=_finite, default=None,
-                      help="element length along the round in mm (default: the input's own next to the edge)")
-    band.add_argument("--max-aspect", metavar="X", type=_finite, default=None,
-                      help="largest aspect ratio (longest / shortest side) of the round's elements, >= 1")
-    band.add_argument("--triangles", action="store_true",
-                      help="solver decks: write the band as triangles only (default: quads where they pair)")
-    rnd.add_argument("--node-id-start", metavar="N", type=int, default=None,
-                     help="solver decks: number new nodes from N (default: above the deck's largest node ID)")
-    rnd.add_argument("--element-id-start", metavar="N", type=int, default=None,
-                     help="solver decks: number new elements from N (default: above the deck's largest element ID)")
-    rnd.add_argument("--part", metavar="PID", type=int, default=None,
-                     help="solver decks: round only this part's shells (LS-DYNA/Nastran PID; Abaqus: the "
-                          "ELSET's number in order of appearance); other parts are kept as they are")
+    add_band_and_deck_arguments(rnd)
 
     add_reround_parser(commands)
 
@@ -132,21 +118,44 @@ def build_parser():
     return parser
 
 
+def add_band_and_deck_arguments(command):
+    """The band element controls and the solver deck options (round and reround take the same)."""
+    band = command.add_argument_group("band elements (each off by default; the finer rule wins)")
+    band.add_argument("--element-angle", metavar="DEG", type=_finite, default=None,
+                      help="at most DEG degrees of the round's profile per element across it (e.g. 10)")
+    band.add_argument("--element-length", metavar="L", type=_finite, default=None,
+                      help="element length along the round in mm (default: the input's own next to the edge)")
+    band.add_argument("--max-aspect", metavar="X", type=_finite, default=None,
+                      help="largest aspect ratio (longest / shortest side) of the round's elements, >= 1")
+    band.add_argument("--triangles", action="store_true",
+                      help="solver decks: write the band as triangles only (default: quads where they pair)")
+    command.add_argument("--node-id-start", metavar="N", type=int, default=None,
+                         help="solver decks: number new nodes from N (default: above the deck's largest node ID)")
+    command.add_argument("--element-id-start", metavar="N", type=int, default=None,
+                         help="solver decks: number new elements from N (default: above the deck's largest element ID)")
+    command.add_argument("--part", metavar="PID", type=int, default=None,
+                         help="solver decks: work on this part's shells only (LS-DYNA/Nastran PID; Abaqus: the "
+                              "ELSET's number in order of appearance); other parts are kept as they are")
+
+
 def add_reround_parser(commands):
     """`meshround reround`: change the radius of existing rounds (reround.py)."""
     rr = commands.add_parser(
         "reround", help="change the radius of the existing rounds at the seeds (radius 0: sharpen them)",
         description="Find the existing round (a strip of facets turning between two flat sides) at each seed, "
                     "measure its radius, rebuild the sharp edge it replaced and round that edge again with "
-                    "radius R (0: leave it sharp); write OUT. The found radius is printed per strip.")
-    rr.add_argument("input", metavar="IN", help="mesh file to read")
-    rr.add_argument("output", metavar="OUT", help="mesh file to write (format from its extension)")
+                    "radius R (0: leave it sharp); write OUT. The found radius is printed per strip. IN and OUT "
+                    "both solver decks (.k .key .dyn / .bdf .nas .dat / .inp, one family): the deck is written "
+                    "back with only the band's elements and nodes changed (MeshRound.change_radius_deck).")
+    rr.add_argument("input", metavar="IN", help="mesh file or solver deck to read")
+    rr.add_argument("output", metavar="OUT", help="mesh file or solver deck to write (format from its extension)")
     rr.add_argument("--seed", metavar="X,Y,Z", type=point, action="append", required=True,
                     help="a point on an existing round (repeatable)")
     rr.add_argument("--radius", metavar="R", type=_finite, required=True, help="the new radius (mm); 0: sharp")
     rr.add_argument("--tolerance", metavar="T", type=_finite, default=None,
                     help="chordal tolerance (mm); default: radius / 100")
     rr.add_argument("--report", metavar="FILE", help="write the report (with found_radius per strip) as JSON")
+    add_band_and_deck_arguments(rr)
 
 
 def check_extensions(parser, args, decks=True):
@@ -226,29 +235,39 @@ def run_round(args):
 
 
 def run_round_deck(args):
-    """IN and OUT solver decks: MeshRound.round_deck (it writes OUT itself, all or nothing)."""
+    """IN and OUT solver decks: MeshRound.round_deck or, for reround, change_radius_deck (each writes OUT
+    itself, all or nothing)."""
     _, MeshRound = _import_freecad()
     from MeshRound.decks import QuadOptions
-    radius = args.radius if args.radius is not None else args.radius_at
+    reround = args.command == "reround"
+    radius = args.radius if reround or args.radius is not None else args.radius_at
+    edit = MeshRound.change_radius_deck if reround else MeshRound.round_deck
     try:
-        res = MeshRound.round_deck(args.input, args.output, args.seed, radius, part=args.part,
-                                   tolerance=args.tolerance, feature_angle=args.feature_angle, reach=args.reach,
-                                   band=band_controls(args), node_id_start=args.node_id_start,
-                                   element_id_start=args.element_id_start,
-                                   quad_options=QuadOptions(quads=False) if args.triangles else None)
+        res = edit(args.input, args.output, args.seed, radius, part=args.part, tolerance=args.tolerance,
+                   band=band_controls(args), node_id_start=args.node_id_start, element_id_start=args.element_id_start,
+                   quad_options=QuadOptions(quads=False) if args.triangles else None,
+                   **({} if reround else dict(feature_angle=args.feature_angle, reach=args.reach)))
     except MeshRound.RoundingError as exc:
-        raise Failure(f"rounding failed [{getattr(exc, 'code', 'invalid_input')}]: {exc}") from exc
+        what = "changing the radius" if reround else "rounding"
+        raise Failure(f"{what} failed [{getattr(exc, 'code', 'invalid_input')}]: {exc}") from exc
     except OSError as exc:
         raise Failure(f"cannot write '{args.output}': {exc}") from exc
     if args.report:
         _write_all_or_nothing([(args.report, lambda path: _dump_json(dict(res.report, input=args.input,
                                                                              output=args.output), path))])
     d = res.report["deck"]
-    print(f"meshround: {res.report.get('chains')} chain(s) rounded; {d['elements_removed']} of "
+    if reround:
+        found = ", ".join(f"{x:.4g}" for x in res.report["found_radius"])
+        done = f"{len(res.report['strips'])} round(s) found (r = {found} mm) -> r = {args.radius:g} mm"
+    else:
+        done = f"{res.report.get('chains')} chain(s) rounded"
+    print(f"meshround: {done}; {d['elements_removed']} of "
           f"{d['elements_in']} elements replaced by {d['new_quads']} quads and {d['new_triangles']} triangles, "
           f"{d['nodes_new']} new nodes, {len(d['sets_updated'])} set(s) updated, "
           f"{res.report.get('seconds', 0.0):.2f} s -> {', '.join(res.paths)}")
     print(f"meshround: {quality_line(d['quality'])}")
+
+
 def run_radius_tool(args):
     """max-radius and sweep (cli_radius.py)."""
     from . import cli_radius
@@ -278,10 +297,13 @@ def _deck_mesh(MeshRound, path, part):
 
 
 def run_reround(args):
+    if deck_family(args.input) and deck_family(args.output):
+        return run_round_deck(args)
     Mesh, MeshRound = _import_freecad()
     mesh = _read_mesh(Mesh, args.input)
     try:
-        result = MeshRound.change_radius(mesh, args.seed, args.radius, tolerance=args.tolerance)
+        result = MeshRound.change_radius(mesh, args.seed, args.radius, tolerance=args.tolerance,
+                                         band=band_controls(args))
     except MeshRound.RoundingError as exc:
         raise Failure(f"changing the radius failed [{getattr(exc, 'code', 'invalid_input')}]: {exc}") from exc
     _write_result(args, result)
@@ -394,7 +416,7 @@ def main(argv=None):
         elif args.command in ("max-radius", "sweep"):
             run_radius_tool(args)
         elif args.command == "reround":
-            check_extensions(parser, args, decks=False)
+            check_extensions(parser, args)
             if args.radius < 0 or (args.tolerance is not None and args.tolerance <= 0):
                 parser.error("--radius must be >= 0 and --tolerance > 0")
             run_reround(args)

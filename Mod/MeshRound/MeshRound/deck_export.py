@@ -4,8 +4,8 @@
     rounding = MeshRound.make_rounding(deck, seeds, 5.0)          # or a Rounding of a Rounding of the Deck
     res = MeshRound.export_deck(rounding, "die_r5.k")             # decks.DeckRoundingResult of the last stage
 
-The Roundings from the Deck up to `rounding` are applied to the deck file in turn with decks.round_deck,
-each with the feature's own Seeds, Radius or radius law, Tolerance, FeatureAngle, Reach and band element
+The Roundings from the Deck up to `rounding` are applied to the deck file in turn with decks.round_deck
+(decks.change_radius_deck for one whose Operation changes the radius of existing rounds), each with the feature's own Seeds, Radius or radius law, Tolerance, FeatureAngle, Reach and band element
 controls (ElementAngle, ElementLength, MaxAspectRatio); the decks in
 between go to a temporary folder.  So the deck written is exactly what round_deck writes: every line, ID,
 part and set outside the rounds kept byte for byte (README, "Solver decks").  Refused with RoundingError
@@ -90,7 +90,7 @@ def export_deck(rounding, out_path, quad_options=None):
             if not last:
                 os.makedirs(os.path.dirname(target))
             with busy(f"Exporting {obj.Label} as a deck (Esc cancels)") as token:
-                result = decks.round_deck(source, target, list(obj.Seeds), _radius(obj),
+                result = _deck_edit(obj)(source, target, list(obj.Seeds), _radius(obj),
                                           tolerance=obj.Tolerance.Value or None,
                                           feature_angle=obj.FeatureAngle.Value, reach=obj.Reach,
                                           quad_options=quad_options, cancel=token, band=_band(obj))
@@ -98,6 +98,13 @@ def export_deck(rounding, out_path, quad_options=None):
             source = target
     result.report["export_stages"] = stages
     return result
+
+
+def _deck_edit(obj):
+    """The deck edit obj's Operation makes: decks.round_deck, or change_radius_deck for a Rounding that
+    changes the radius of existing rounds."""
+    from .objects.rounding import CHANGE_RADIUS
+    return decks.change_radius_deck if getattr(obj, "Operation", None) == CHANGE_RADIUS else decks.round_deck
 
 
 def _radius(obj):

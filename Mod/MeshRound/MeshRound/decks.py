@@ -4,6 +4,7 @@
     deck = MeshRound.read_deck("die.k")                 # nodes, shells, parts, sets (numpy arrays)
     res = MeshRound.round_deck("die.k", "die_r5.k", seeds=[(x, y, z)], radius=5, part=None)
     res.report                                           # engine report + what happened to the deck
+    res = MeshRound.change_radius_deck("die.k", "die_r8.k", seeds=[(x, y, z)], radius=8)  # an existing round
 
 The reading and writing are the engine's (cpp_core deck.h): every line that does not describe a changed
 node, element or set is written back byte for byte.  Here the deck's shells are given to the engine as
@@ -33,8 +34,8 @@ from . import api
 from .deck_formats import DECK_EXTENSIONS, deck_family
 from .errors import RoundingError, require_core
 
-__all__ = ["DECK_EXTENSIONS", "is_deck_path", "read_deck", "deck_triangles", "round_deck", "DeckRoundingResult",
-           "QuadOptions"]
+__all__ = ["DECK_EXTENSIONS", "is_deck_path", "read_deck", "deck_triangles", "round_deck", "change_radius_deck",
+           "edit_deck", "DeckRoundingResult", "QuadOptions"]
 
 def is_deck_path(path):
     return deck_family(path) is not None
@@ -201,6 +202,34 @@ def round_deck(in_path, out_path, seeds, radius, part=None, tolerance=None, feat
     ELSET in read_deck()["parts"]) to round alone; the other parts are kept as they are.  Other arguments as
     round_edges (band: the band's element controls).  report["deck"]["quality"]: the new elements' quality.
     Returns DeckRoundingResult; raises RoundingError (nothing written)."""
+    def run(split):
+        return api.round_arrays(split.vertices, split.triangles, seeds, radius, tolerance=tolerance,
+                                feature_angle=feature_angle, reach=reach, cancel=cancel, band=band, arrays=False)
+    return edit_deck(in_path, out_path, run, part, quad_options, node_id_start, element_id_start, keep_unused_nodes)
+
+
+def change_radius_deck(in_path, out_path, seeds, radius, part=None, tolerance=None, feature_angle=30.0, reach=3.0,
+                       quad_options=None, node_id_start=None, element_id_start=None, keep_unused_nodes=False,
+                       cancel=None, band=None, fit_tolerance=0.01):
+    """Change the radius of the existing rounds `seeds` pick in the deck at in_path (MeshRound.change_radius
+    on its shells: radius 0 sharpens them) and write the deck to out_path, as round_deck does: only the
+    band's elements and nodes change, the rest keeps its IDs and lines.  report["found_radius"] and
+    report["strips"] say what was found.  Returns DeckRoundingResult; raises RoundingError (not_a_round
+    and the others; nothing written)."""
+    from . import reround
+
+    def run(split):
+        return reround.change_radius_arrays(split.vertices, split.triangles, seeds, radius, tolerance, feature_angle,
+                                            reach, None, cancel, fit_tolerance, band, arrays=False)
+    return edit_deck(in_path, out_path, run, part, quad_options, node_id_start, element_id_start, keep_unused_nodes)
+
+
+def edit_deck(in_path, out_path, run, part=None, quad_options=None, node_id_start=None, element_id_start=None,
+              keep_unused_nodes=False):
+    """The deck edit round_deck and change_radius_deck share: the deck at in_path read, its shells (of
+    `part`) given as triangles (ShellTriangles) to run(split), which returns an api.RoundingResult whose
+    delta edits them; the delta turned into elements and nodes (deck_edit.py), the deck written to out_path
+    and checked (deck_check.py), all or nothing."""
     from . import deck_check, deck_edit  # the mesh -> elements step and the written deck's check
     stamps = [_stamp()]
     _check_extension(out_path)
@@ -212,8 +241,7 @@ def round_deck(in_path, out_path, seeds, radius, part=None, tolerance=None, feat
     split = shell_triangles(arrays, part)
     stamps.append(_stamp())
     # The result is used as its delta (the band); its whole arrays are made only if asked for.
-    result = api.round_arrays(split.vertices, split.triangles, seeds, radius, tolerance=tolerance,
-                              feature_angle=feature_angle, reach=reach, cancel=cancel, band=band, arrays=False)
+    result = run(split)
     stamps.append(_stamp())
     edits, summary, band = deck_edit.edits_for(arrays, split, result, quad_options or QuadOptions(),
                                                node_id_start, element_id_start, keep_unused_nodes)

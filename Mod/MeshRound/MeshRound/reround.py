@@ -51,14 +51,16 @@ def change_radius(mesh, seeds, radius, tolerance=None, feature_angle=30.0, reach
 
 
 def change_radius_arrays(vertices, triangles, seeds, radius, tolerance=None, feature_angle=30.0, reach=3.0,
-                         max_new_facets=None, cancel=None, fit_tolerance=0.01, band=None):
-    """change_radius for a mesh given as vertices (n, 3) and triangles (m, 3) (the task panel's preview)."""
+                         max_new_facets=None, cancel=None, fit_tolerance=0.01, band=None, arrays=True):
+    """change_radius for a mesh given as vertices (n, 3) and triangles (m, 3) (the task panel's preview, a
+    solver deck's shells).  result.delta is the change as an edit of the input (mesh_delta.h); arrays=False:
+    result.vertices / triangles are made from it on first use (a deck's edit needs the delta only)."""
     started = time.perf_counter()
     check_cancelled(cancel)
     if len(triangles) == 0:
         raise RoundingError("mesh is empty: it has no facets")
     arguments = _arguments(seeds, radius, tolerance, feature_angle, reach, max_new_facets, cancel, fit_tolerance, band)
-    result = api._round(vertices, triangles, arguments, engine="change_radius")
+    result = api._round(vertices, triangles, arguments, engine="change_radius", arrays=arrays)
     result.report["found_radius"] = [s["found_radius"] for s in result.report["strips"]]
     result.report["seconds"] = time.perf_counter() - started
     return result
