@@ -3,6 +3,7 @@
 #include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <deque>
 
 #include "meshround/cancel.h"
@@ -90,21 +91,64 @@ void flood_curved(Facets& fx, int f0, long budget, std::vector<int>& curved, std
   }
 }
 
-// The axis the flood's normals turn about: the direction they are all (nearly) perpendicular to.
-Vec3 turning_axis(Facets& fx, const std::vector<int>& facets, const Vec3& where, double tilt_deg) {
+// The facets' normals' area-weighted spread: its eigenvalues (ascending) and vectors; `total` the area.
+Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> normal_spread(Facets& fx, std::vector<int>::const_iterator begin,
+                                                             std::vector<int>::const_iterator end, double* total) {
   Eigen::Matrix3d spread = Eigen::Matrix3d::Zero();
-  double total = 0;
-  for (int f : facets) {
-    const double w = fx.area(f);
-    spread += w * fx.normal(f) * fx.normal(f).transpose();
-    total += w;
+  *total = 0;
+  for (auto f = begin; f != end; ++f) {
+    const double w = fx.area(*f);
+    spread += w * fx.normal(*f) * fx.normal(*f).transpose();
+    *total += w;
   }
-  Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(spread);
+  return Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(spread);
+}
+
+// The facets flooded first from the seed (breadth first: its neighbourhood, a few elements each way) that
+// tell a round turning along its length from a free-form region.
+constexpr size_t kLocalFacets = 60;
+
+// The axis the flood's normals turn about: the direction they are all (nearly) perpendicular to. The
+// flood (breadth first from the seed) failing that while its first kLocalFacets pass is a round whose
+// axis turns along it: a chain curved in plan, or rounds going on into others through corner blends.
+Vec3 turning_axis(Facets& fx, const std::vector<int>& facets, const Vec3& where, double tilt_deg) {
+  const double tilt2 = std::pow(std::sin(tilt_deg * kDeg), 2);
+  double total = 0;
+  const auto eig = normal_spread(fx, facets.begin(), facets.end(), &total);
   const Eigen::Vector3d lam = eig.eigenvalues();  // ascending
-  if (!(total > 0) || lam(0) > std::pow(std::sin(tilt_deg * kDeg), 2) * total)
+  if (!(total > 0) || lam(0) > tilt2 * total) {
+    double local_total = 0;
+    const auto near = normal_spread(fx, facets.begin(), facets.begin() + std::min(facets.size(), kLocalFacets), &local_total);
+    if (facets.size() > kLocalFacets && local_total > 0 && near.eigenvalues()(0) <= tilt2 * local_total && near.eigenvalues()(1) >= 1e-8 * local_total)
+      not_a_round("it is a round whose axis turns along its length (a chain curved in plan, as an S-shaped edge or a circular "
+                  "pocket's rim, or rounds running on into each other through corner blends, as around a pocket's rim); "
+                  "only a straight round between two flat sides can be changed", where);
     not_a_round("its facets' normals do not turn about one axis (a free-form or doubly curved region)", where);
+  }
   if (lam(1) < 1e-8 * total) not_a_round("its facets' normals do not turn (a flat region)", where);
   return eig.eigenvectors().col(0).normalized();
+}
+
+// A side whose candidates do not share one plane: the two of them farthest apart in angle named. (A side
+// that curves along the round -- a wall curved in plan -- is seen here: its flat-looking facets, one
+// tessellation column each, turn with the wall.)
+[[noreturn]] void refuse_side(Facets& fx, const std::vector<int>& members, int side, const SharpenOptions& o, const Vec3& where) {
+  (void)o;
+  auto farthest = [&](const Vec3& from) {  // the member whose normal is farthest from `from` (linear work)
+    int best = members.front();
+    for (int f : members)
+      if (angle_deg(fx.normal(f), from) > angle_deg(fx.normal(best), from)) best = f;
+    return best;
+  };
+  Vec3 mean = Vec3::Zero();
+  for (int f : members) mean += fx.area(f) * fx.normal(f);
+  const int a = farthest(mean.normalized()), b = farthest(fx.normal(a));
+  const double spread = angle_deg(fx.normal(a), fx.normal(b));
+  char turn[32];
+  std::snprintf(turn, sizeof turn, "%.1f", spread);
+  not_a_round(std::string("the faces along its ") + (side ? "second" : "first") + " side are not one plane (near " + format_point(fx.centroid(a)) +
+              " and " + format_point(fx.centroid(b)) + " they turn by " + turn + " degrees: a side curved along the round, as a "
+              "wall curved in plan, or more than one face); only a round between two flat sides can be changed", where);
 }
 
 // Step 2's end: each side's plane normal from its candidates (one normal per side, else refused).
@@ -124,8 +168,7 @@ void side_normals(Facets& fx, const std::vector<int>& beside, const Vec3& n0, co
     strip.normal[side] = sum[side].normalized();
     double offset = 0;
     for (int f : members[side]) {
-      if (angle_deg(fx.normal(f), strip.normal[side]) > 2 * o.flat_deg)
-        not_a_round("more than one flat face lies along one of its sides (near " + format_point(fx.centroid(f)) + ")", where);
+      if (angle_deg(fx.normal(f), strip.normal[side]) > 2 * o.flat_deg) refuse_side(fx, members[side], side, o, where);
       offset += strip.normal[side].dot(fx.centroid(f));
     }
     strip.offset[side] = offset / double(members[side].size());

@@ -182,3 +182,57 @@ def test_variable_round_measured_law_and_made_constant():
     row = reference.score(cases.case("box"), mesh, res.mesh, res.report)
     assert row["dev_out_to_ref"] <= DEVIATION and row["dev_ref_to_out"] <= DEVIATION, row
     assert row["boundary_edges_out"] == 0 and not row["self_intersections"] and row["far_facets_lost"] == 0, row
+
+
+def s_plate(r0, bend=30.0, turn_deg=40.0):
+    """A plate (10 mm thick) whose top edge follows an S in plan -- two arcs of radius `bend`, each turning
+    turn_deg, tangent at the middle -- with that edge filleted by OCCT at r0: a round whose one side (the top)
+    is flat and whose other side (the wall) is curved along it.  Returns (filleted solid, a seed on the round)."""
+    a = math.radians(turn_deg)
+    c1 = V(0, -bend, 0)
+    arc1 = Part.ArcOfCircle(Part.Circle(c1, V(0, 0, 1), bend), math.pi / 2 - a, math.pi / 2)
+    pm = c1 + V(bend * math.cos(math.pi / 2 - a), bend * math.sin(math.pi / 2 - a), 0)
+    n = pm - c1
+    n.normalize()
+    c2 = pm + n * bend
+    arc2 = Part.ArcOfCircle(Part.Circle(c2, V(0, 0, 1), bend), -math.pi / 2 - a, -math.pi / 2)
+    p1 = c2 + V(0, -bend, 0)
+    edges = [arc1.toShape(), arc2.toShape(), Part.LineSegment(p1, V(p1.x, -25, 0)).toShape(),
+             Part.LineSegment(V(p1.x, -25, 0), V(0, -25, 0)).toShape(), Part.LineSegment(V(0, -25, 0), V(0, 0, 0)).toShape()]
+    solid = Part.Face(Part.Wire(Part.__sortEdges__(edges))).extrude(V(0, 0, 10))
+    top = [e for e in solid.Edges if e.BoundBox.ZMin > 10 - 1e-9 and isinstance(e.Curve, Part.Circle)]
+    filleted = solid.makeFillet(r0, top)
+    face = max((f for f in filleted.Faces if isinstance(f.Surface, Part.Toroid)), key=lambda f: f.Area)
+    u0, u1, v0, v1 = face.ParameterRange
+    return filleted, face.valueAt(0.3 * u0 + 0.7 * u1, 0.5 * (v0 + v1))
+
+
+def test_round_with_a_side_curved_in_plan_is_refused_by_name():
+    """A round whose wall side curves along it (an S of two 40 degree arcs).  Not done yet (the sides must be
+    flat): refused with not_a_round naming the curved side, the input untouched."""
+    solid, seed = s_plate(3.0)
+    assert solid.isValid()
+    mesh = MeshPart.meshFromShape(Shape=solid, MaxLength=0.4 * 3.0)
+    before = mesh.Topology
+    with pytest.raises(MeshRound.RoundingError) as err:
+        MeshRound.change_radius(mesh, [seed], 4.5)
+    assert err.value.code == "not_a_round" and "curved along the round" in str(err.value), str(err.value)
+    assert mesh.Topology == before
+
+
+TURNS = "a round whose axis turns along its length"
+
+
+@pytest.mark.parametrize("name,max_length", [("s_chain", 0.4), ("pocket_rim", 0.4), ("pocket_rim_square", 0.7)])
+def test_rounds_turning_along_their_length_are_refused_by_name(name, max_length):
+    """The issue's S-shaped chain (cases "s_chain": its rounds are tori and cylinders along the S), a circular
+    pocket's rim and a rectangular pocket's rim with OCCT's corner blends (a network: the four rounds run
+    on into each other): refused with not_a_round saying the round turns along its length (not "free-form"),
+    the input untouched."""
+    case = cases.case(name)
+    mesh = MeshPart.meshFromShape(Shape=case.reference, MaxLength=max_length * case.r_max)
+    before = mesh.Topology
+    with pytest.raises(MeshRound.RoundingError) as err:
+        MeshRound.change_radius(mesh, [seed_on_round(case)], 1.5 * case.r_max)
+    assert err.value.code == "not_a_round" and TURNS in str(err.value), str(err.value)
+    assert mesh.Topology == before
