@@ -44,6 +44,8 @@ struct ContactLineDistance {
 constexpr double kFar = 1e30;  // |signed distance| of a vertex whose side is clear without projecting it
 constexpr double kSnapKeepsAngle = 10 * M_PI / 180;  // facets around a vertex snapped from afar keep this
 constexpr double kNearShaped = 0.4;                   // x its shortest edge: snapped if its facets keep shape
+// A trim line's point within kHairShare of the tolerance outside its facet is a hair outside (hair_outside).
+constexpr double kHairShare = 0.25;
 
 struct VertexSide {
   double d = 0;        // signed distance (0 = on the trim line after snapping); +-kFar: side known only
@@ -215,6 +217,72 @@ TrimLines trim_base_meshes(const MeshTopology& mesh, const SharpChain& chain, co
       }
       return u;
     };
+    // The trim classifies facets by their corners' sides, so an edge between two kept corners must not run
+    // into the band between them. Where the contact line curves tightly (the arc a rim's contact line makes
+    // around a rolled corner) and the facets are long (a CAD mesh), a vertex snapped onto the line, or lying
+    // just outside it, can have an edge to a kept vertex that leaves it nearly along the line on the band's
+    // side and comes out again farther on: the kept facet beside that edge overlaps the band, the trim line's
+    // points in the cut facet next to it fall beyond the edge, and that polygon folds over (0.11 mm on the
+    // drafted pocket's CAD mesh at r = 2.5, the edge 7.9 mm long). `reenters`: the band's edge, sampled along
+    // from -> to (densely near `from`, where such a dip begins), comes back into the band by more than a hair
+    // after being out (or on it, at `from`). A dip within a hair is left to hair_outside (below).
+    const double hair = kHairShare * opt.tolerance;
+    auto reenters = [&](const Vec3& from, const Vec3& to, double u) {
+      const double length = (to - from).norm();
+      if (!(length > 0)) return false;
+      std::vector<double> ts;
+      for (int i = 1; i < 16; ++i) ts.push_back(i / 16.0);
+      for (double t = 0.25; t * length > 0.25 * hair; t *= 0.5) ts.push_back(t);
+      std::sort(ts.begin(), ts.end());
+      bool out = distance(from, u, &u) > -hair;
+      for (double t : ts) {
+        const double d = distance(from + t * (to - from), u, &u);
+        if (d > hair) out = true;
+        else if (d < -hair && out) return true;
+      }
+      return false;
+    };
+    // True if an edge from vertex v, at q, to a vertex of this side's base beyond the line or on it enters the
+    // band by more than a hair: an edge between two vertices on the line is taken as running along it (the
+    // round's boundary row follows it), so on a curved line it must be short enough to stay within a hair
+    // of the line (on the pocket's CAD mesh at r = 5 a chord 11 mm long left the line by 1.1 mm and the
+    // round beside it 0.027 r off the exact one).
+    // Neither can happen where the line is straight over the edges' length, nor to an edge that leaves the
+    // line outwards more steeply than the line bends over its length: `line_bend` is how far the line
+    // bends from its chords over +-L around u (a circle's sag over a half chord L is the deepest dip of a
+    // segment of length L from a point on it), so that only the edges that may dip are sampled.
+    auto line_bend = [&](double u, double L) {
+      Vec3 C, Cu, Cv;
+      surface.d1(u, side, C, Cu, Cv);
+      const double h = 0.5 * L / std::max(Cu.norm(), 1e-300);
+      Vec3 c[5];
+      for (int k = 0; k < 5; ++k) c[k] = surface.value(surface.wrap(u + (k - 2) * h), side);
+      double t;
+      return std::max({(closest_point_on_segment(c[2], c[0], c[4], &t) - c[2]).norm(),
+                       (closest_point_on_segment(c[1], c[0], c[2], &t) - c[1]).norm(),
+                       (closest_point_on_segment(c[3], c[2], c[4], &t) - c[3]).norm()});
+    };
+    auto edge_reenters = [&](int v, const Vec3& q, double u_v) {
+      double longest = 0;
+      for (int w : mesh.vertex_neighbours(v)) longest = std::max(longest, (edit.point(w) - q).norm());
+      const double bend = line_bend(u_v, longest);
+      if (bend < 0.1 * hair) return false;
+      Vec3 away;
+      double u_q = u_v;
+      distance(q, u_v, &u_q, &away);
+      for (const int* g = mesh.facets_begin(v); g != mesh.facets_end(v); ++g) {
+        const auto it = base.side_of.find(*g);
+        if (it == base.side_of.end() || it->second != side) continue;
+        for (int k = 0; k < 3; ++k) {
+          const int w = mesh.F(*g, k);
+          const Vec3 e = edit.point(w) - q;
+          if (w == v || e.dot(away) >= 2 * (bend + hair)) continue;  // (e.dot(away) / |e|: the sine of its climb)
+          double u = u_q;
+          if (distance(edit.point(w), u, &u) >= -hair && reenters(q, edit.point(w), u_q)) return true;
+        }
+      }
+      return false;
+    };
     std::unordered_set<int> plane_points;  // trim points on an end face's plane, not on the contact line
     std::unordered_map<int, VertexSide> vs;
     std::unordered_map<int, double> cut_u;  // cut point -> its line parameter
@@ -271,9 +339,31 @@ TrimLines trim_base_meshes(const MeshTopology& mesh, const SharpChain& chain, co
             const bool stays_on_end_plane = !on_end_plane || std::abs(past_end(q)) <= plane_slack;  // (e.g. along the end face's edge)
             if (stays_on_end_plane && (move < near_edges || ((on_crease ? move < near_line : move < kNearShaped * shortest) &&
                                       snap_keeps_shape(mesh, edit, v, q)))) {
-              edit.moved[v] = q;
-              s.d = 0;
-              ++out.vertices_snapped;
+              if (!edge_reenters(v, q, s.u)) {
+                edit.moved[v] = q;
+                s.d = 0;
+                ++out.vertices_snapped;
+              } else if (!on_crease && s.d > -near_line) {
+                // On the line an edge of it would run into the band and out again (above): in flat ground the
+                // vertex goes a little way past the line instead, into the band, where its edges leave the
+                // band once -- as far in as a vertex that is not snapped may be (0.4 of the line's spacing),
+                // within half its shortest edge; if that turns a facet over or still leaves an edge
+                // re-entering, it stays where it is.
+                const double depth = std::min(near_line, 0.5 * shortest);
+                const Vec3 p = mesh.point(v), q_in = q - depth * away;
+                double u_in = s.u;
+                bool fits = distance(q_in, s.u, &u_in) < -hair;
+                for (const int* g = mesh.facets_begin(v); fits && g != mesh.facets_end(v); ++g) {
+                  Vec3 c[3];
+                  for (int j = 0; j < 3; ++j) c[j] = mesh.F(*g, j) == v ? q_in : edit.point(mesh.F(*g, j));
+                  const Vec3 n = mesh.facet_normal(*g);
+                  fits = std::abs((q_in - p).dot(n)) <= 0.02 * opt.tolerance && (c[1] - c[0]).cross(c[2] - c[0]).dot(n) > 0;
+                }
+                if (fits && !edge_reenters(v, q_in, u_in)) {
+                  edit.moved[v] = q_in;
+                  s.d = distance(q_in, u_in, &s.u);
+                }
+              }
             }
           }
         }
@@ -402,7 +492,6 @@ TrimLines trim_base_meshes(const MeshTopology& mesh, const SharpChain& chain, co
     // q (in facet f's plane) a hair outside one of f's sides -- within kHairShare of the tolerance (the sag
     // the line's points are spaced for, below), with its corners where the snaps put them. (A line that runs
     // well outside a thin CAD facet and back, by 0.7 mm and more on the S chain's, is taken as it is.)
-    constexpr double kHairShare = 0.25;
     auto hair_outside = [&](int f, const Vec3& q) {
       const Vec3 c[3] = {edit.point(mesh.F(f, 0)), edit.point(mesh.F(f, 1)), edit.point(mesh.F(f, 2))};
       const Vec3 n = (c[1] - c[0]).cross(c[2] - c[0]).normalized();
