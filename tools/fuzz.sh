@@ -6,6 +6,8 @@
 #   tools/fuzz.sh [SECONDS] [TARGET...]     corpora and findings: fuzz-out/<target>/
 # A finding is replayed with:  build-fuzz/tests/fuzz/<target> fuzz-out/<target>/artifacts/<file>
 # (MESHROUND_FUZZ_VERBOSE=1 prints the decoded case) and minimised with -minimize_crash=1 -runs=2000.
+# Long runs: MESHROUND_FUZZ_MAX_NEW_FACETS=20000 caps every fuzz_round case's work budget (a case that would
+# make more is refused with work_limit before it is made), so that the slow tail does not set the rate.
 set -euo pipefail
 ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 SECONDS_EACH="${1:-60}"

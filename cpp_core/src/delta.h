@@ -24,6 +24,8 @@ struct Lineage {
 Lineage follow(const Lineage& before, const StepOrigin& step);
 // The delta from the input (V0, F0) to the mesh (V, F) of that lineage. Work: the whole mesh's.
 MeshDelta delta_from_lineage(const Points& V0, const Triangles& F0, const Points& V, const Triangles& F, const Lineage& lineage);
+// The delta as an edit of `in` (for the output check, guard.h, of a result made in several passes).
+MeshEdit edit_of(const MeshTopology& in, const MeshDelta& d);
 // Two passes' deltas as one: `first` made (V1, F1) from (V0, F0), `first_origin` says how; `then` edits (V1, F1).
 MeshDelta delta_through(const Points& V0, const Triangles& F0, const Points& V1, const Triangles& F1, const StepOrigin& first_origin,
                         const MeshDelta& then);

@@ -285,6 +285,34 @@ int split_chain_edge(SplitMesh& m, std::unordered_map<std::uint64_t, std::vector
   return x;
 }
 
+// A point put on an edge splits every facet on that edge, not only the facets of the side being split:
+// a neighbour whose crossing lies past the segment's end (split_crossed leaves it) would keep the edge
+// whole, and the mesh would open there (a crack as thin as the point's offset from the edge's end).
+void split_edges_through_points(SplitMesh& m, const MeshTopology& mesh) {
+  const int n = mesh.num_vertices();
+  const size_t input_facets = size_t(mesh.num_facets());
+  for (const auto& [key, x] : m.edge_point) {
+    const int a = int(key >> 32), b = int(key & 0xffffffffu);
+    std::vector<int> on_edge;
+    if (a < n && b < n) {
+      int pair[2];
+      const int count = mesh.edge_facet_pair(a, b, pair);
+      for (int i = 0; i < std::min(count, 2); ++i) m.live(pair[i], on_edge);
+    }
+    for (size_t t = input_facets; t < m.tris.size(); ++t)  // the pieces made so far
+      if (!m.gone[t]) on_edge.push_back(int(t));
+    for (int t : on_edge) {
+      if (m.gone[size_t(t)]) continue;
+      const auto g = m.tris[size_t(t)];
+      for (int j = 0; j < 3; ++j)
+        if ((g[j] == a && g[(j + 1) % 3] == b) || (g[j] == b && g[(j + 1) % 3] == a)) {
+          m.replace(t, {{g[j], x, g[(j + 2) % 3]}, {x, g[(j + 1) % 3], g[(j + 2) % 3]}});
+          break;
+        }
+    }
+  }
+}
+
 }  // namespace
 
 std::vector<EndSegment> end_segments(const MeshTopology& mesh, const SharpChain& chain, const BaseMeshes& base,
@@ -343,6 +371,7 @@ bool split_along_end_segments(const MeshTopology& mesh, const std::vector<EndSeg
     if (q < 0 || q == p) continue;
     split_crossed(m, facets, seg.cut, p, q, slack);
   }
+  split_edges_through_points(m, mesh);
   const int n = mesh.num_vertices(), facets = mesh.num_facets();
   bool changed = m.points.size() > size_t(n) || std::any_of(m.gone.begin(), m.gone.end(), [](char g) { return g != 0; });
   for (int v = 0; v < n && !changed; ++v) changed = m.points[size_t(v)] != mesh.point(v);  // a vertex moved onto the corner

@@ -185,6 +185,15 @@ MeshDelta delta_from_lineage(const Points& V0, const Triangles& F0, const Points
   return d;
 }
 
+MeshEdit edit_of(const MeshTopology& in, const MeshDelta& d) {
+  MeshEdit edit(in);
+  edit.removed.insert(d.removed.begin(), d.removed.end());
+  for (size_t i = 0; i < d.moved.size(); ++i) edit.moved.emplace(d.moved[i], d.moved_to[i]);
+  edit.new_points = d.new_points;
+  edit.added = d.added;
+  return edit;
+}
+
 MeshDelta delta_through(const Points& V0, const Triangles& F0, const Points& V1, const Triangles& F1, const StepOrigin& first_origin,
                         const MeshDelta& then) {
   Points V2;

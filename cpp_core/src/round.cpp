@@ -230,7 +230,10 @@ RoundedChain round_one_chain(const MeshTopology& mesh, const ChainSeed& seed, co
       MeshDelta on_split;
       const ChainSeed on_split_mesh{seed.point, edge_in(Lineage{from_split.vertex, from_split.facet}, seed.on_edge)};
       RoundedChain out = round_one_chain(split_mesh, on_split_mesh, opt, report, delta ? &on_split : nullptr, net, round_points, is_probe, true);
-      if (delta) *delta = delta_through(mesh.V, mesh.F, V_split, F_split, from_split, on_split);
+      if (delta) {  // the split and the round, checked again as the one edit of `mesh` they are
+        *delta = delta_through(mesh.V, mesh.F, V_split, F_split, from_split, on_split);
+        check_result(edit_of(mesh, *delta), chain, reach, tol, net.chains);
+      }
       return out;
     }
   }

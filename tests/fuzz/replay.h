@@ -16,15 +16,39 @@
 
 namespace meshround::fuzz {
 
+// MESHROUND_FUZZ_DUMP=prefix: the case's input and result written as prefix_in.obj / prefix_out.obj.
+inline void dump_obj(const Points& V, const Triangles& F, const char* suffix) {
+  const char* prefix = std::getenv("MESHROUND_FUZZ_DUMP");
+  if (!prefix) return;
+  std::FILE* out = std::fopen((std::string(prefix) + suffix).c_str(), "w");
+  if (!out) return;
+  for (int v = 0; v < V.rows(); ++v) std::fprintf(out, "v %.17g %.17g %.17g\n", V(v, 0), V(v, 1), V(v, 2));
+  for (int f = 0; f < F.rows(); ++f) std::fprintf(out, "f %d %d %d\n", F(f, 0) + 1, F(f, 1) + 1, F(f, 2) + 1);
+  std::fclose(out);
+}
+
 inline bool verbose() {
   static const bool v = std::getenv("MESHROUND_FUZZ_VERBOSE") != nullptr;
   return v;
 }
 
+// MESHROUND_FUZZ_MAX_NEW_FACETS=N: every case runs with the work budget RoundOptions::max_new_facets
+// at most N (0 or unset: the decoder's own, the engine's default), so that a case that would make more
+// is refused (work_limit) before it is made: a long run's executions per second are then set by the
+// cases' common size, not by their slow tail (tools/fuzz.sh --long).
+inline long fuzz_work_budget() {
+  static const long budget = [] {
+    const char* text = std::getenv("MESHROUND_FUZZ_MAX_NEW_FACETS");
+    return text ? std::max(0L, std::atol(text)) : 0L;
+  }();
+  return budget;
+}
+
 // A generated mesh and options (fuzz_input.h) through round_edges; a success must be sound (sound.h)
 // and leave the input arrays as they were.
 inline std::string round_case(const std::uint8_t* data, std::size_t size) {
-  const FuzzCase c = decode_case(data, size);
+  FuzzCase c = decode_case(data, size);
+  if (fuzz_work_budget() > 0) c.options.max_new_facets = std::min(c.options.max_new_facets, fuzz_work_budget());
   if (c.F.rows() > 6000) return "";  // keep executions fast (the decoder's bounds keep it under this)
   const Points V0 = c.V;
   const Triangles F0 = c.F;
@@ -32,8 +56,12 @@ inline std::string round_case(const std::uint8_t* data, std::size_t size) {
     std::fprintf(stderr, "mesh %ld v %ld f, element %g, seeds %zu, r %g (law %zu), tol %g, angle %g, reach %g\n", long(c.V.rows()),
                  long(c.F.rows()), c.element, c.seeds.size(), c.options.radius, c.options.radius_law.size(), c.options.tolerance,
                  c.options.feature_angle_deg, c.options.reach);
+  if (verbose())
+    for (const Vec3& p : c.seeds) std::fprintf(stderr, "seed %.17g %.17g %.17g\n", p.x(), p.y(), p.z());
   try {
+    dump_obj(c.V, c.F, "_in.obj");
     const RoundResult res = round_edges(c.V, c.F, c.seeds, c.options);
+    dump_obj(res.vertices, res.triangles, "_out.obj");
     if (!(c.V.array() == V0.array()).all() && !(c.V.hasNaN() && V0.hasNaN())) return "the input vertices changed";
     if (!(c.F.array() == F0.array()).all()) return "the input facets changed";
     SoundnessInput s{c.V, c.F, res.vertices, res.triangles, {}, 0};

@@ -415,29 +415,33 @@ inline std::string check_sound(const SoundnessInput& s) {
     if ((lo.array() > fhi.array()).any() || (hi.array() < flo.array()).any()) continue;
     if (!cells(lo, hi, [&](std::uint64_t k) { grid[k].push_back(f); })) big.push_back(f);
   }
+  // Boxes once; the facets over many cells (`big`) are box-tested apart, not copied into every candidate list.
+  std::vector<std::pair<Vec3, Vec3>> boxes(size_t(Fo.rows()));
+  for (int g = 0; g < Fo.rows(); ++g) box(g, boxes[size_t(g)].first, boxes[size_t(g)].second);
   std::vector<int> cand;
   for (int f : fresh) {
-    Vec3 lo, hi;
-    box(f, lo, hi);
-    cand = big;
+    const Vec3 lo = boxes[size_t(f)].first, hi = boxes[size_t(f)].second;
+    cand.clear();
     if (!cells(lo, hi, [&](std::uint64_t k) { auto it = grid.find(k); if (it != grid.end()) cand.insert(cand.end(), it->second.begin(), it->second.end()); }))
       for (int g = 0; g < Fo.rows(); ++g) cand.push_back(g);
     std::sort(cand.begin(), cand.end());
     cand.erase(std::unique(cand.begin(), cand.end()), cand.end());
     const std::array<int, 3> t{Fo(f, 0), Fo(f, 1), Fo(f, 2)};
-    for (int g : cand) {
-      if (g == f || (is_fresh[g] && g < f)) continue;
-      Vec3 glo, ghi;
-      box(g, glo, ghi);
-      if ((glo.array() > hi.array()).any() || (ghi.array() < lo.array()).any()) continue;
-      if (cross_beyond_precision(Vo, t, {Fo(g, 0), Fo(g, 1), Fo(g, 2)}, shrink)) {
-        if (std::getenv("MESHROUND_FUZZ_VERBOSE"))
-          for (int h : {f, g})
-            std::fprintf(stderr, "  facet %d: (%.9g %.9g %.9g) (%.9g %.9g %.9g) (%.9g %.9g %.9g)\n", h, Vo(Fo(h, 0), 0), Vo(Fo(h, 0), 1), Vo(Fo(h, 0), 2),
-                         Vo(Fo(h, 1), 0), Vo(Fo(h, 1), 1), Vo(Fo(h, 1), 2), Vo(Fo(h, 2), 0), Vo(Fo(h, 2), 1), Vo(Fo(h, 2), 2));
-        return "new facet " + std::to_string(f) + " intersects facet " + std::to_string(g) + " near " + format_point(P(Vo, t[0]));
-      }
-    }
+    auto crosses = [&](int g) {
+      if (g == f || (is_fresh[g] && g < f)) return false;
+      const auto& [glo, ghi] = boxes[size_t(g)];
+      if ((glo.array() > hi.array()).any() || (ghi.array() < lo.array()).any()) return false;
+      if (!cross_beyond_precision(Vo, t, {Fo(g, 0), Fo(g, 1), Fo(g, 2)}, shrink)) return false;
+      if (std::getenv("MESHROUND_FUZZ_VERBOSE"))
+        for (int h : {f, g})
+          std::fprintf(stderr, "  facet %d: (%.9g %.9g %.9g) (%.9g %.9g %.9g) (%.9g %.9g %.9g)\n", h, Vo(Fo(h, 0), 0), Vo(Fo(h, 0), 1), Vo(Fo(h, 0), 2),
+                       Vo(Fo(h, 1), 0), Vo(Fo(h, 1), 1), Vo(Fo(h, 1), 2), Vo(Fo(h, 2), 0), Vo(Fo(h, 2), 1), Vo(Fo(h, 2), 2));
+      return true;
+    };
+    for (const std::vector<int>* list : {&cand, &big})
+      for (int g : *list)
+        if (crosses(g))
+          return "new facet " + std::to_string(f) + " intersects facet " + std::to_string(g) + " near " + format_point(P(Vo, t[0]));
   }
   return "";
 }
