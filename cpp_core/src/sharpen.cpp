@@ -28,7 +28,7 @@ int side_of(double t) { return t < 0.5 ? -1 : t > 0.5 ? 1 : 0; }
 
 // The image of a vertex in its own section: the arc from contact A to contact B laid, in proportion, onto
 // contact A -> corner -> contact B; an end face's vertex then slides along the corner line onto that face.
-Vec3 fold_vertex(const RoundStrip& strip, const Vec3& p, double r, double snap, double* t_out) {
+Vec3 fold_vertex(const StripFrame& strip, const Vec3& p, double r, double snap, double* t_out) {
   const Vec3 P = strip.across(p), O = r * strip.centre_dir;
   const Vec3 ta = O - strip.side[0] * r * strip.normal[0], tb = O - strip.side[1] * r * strip.normal[1];
   auto angle = [](const Vec3& u, const Vec3& v) { return std::atan2(u.cross(v).norm(), u.dot(v)); };
@@ -40,7 +40,7 @@ Vec3 fold_vertex(const RoundStrip& strip, const Vec3& p, double r, double snap, 
   return strip.corner + strip.axis * strip.s_of(p) + image;
 }
 
-Vec3 onto_end(const RoundStrip& strip, const StripEnd& end, const Vec3& p) {
+Vec3 onto_end(const StripFrame& strip, const StripEnd& end, const Vec3& p) {
   return p + strip.axis * ((end.offset - end.normal.dot(p)) / end.normal.dot(strip.axis));
 }
 
@@ -52,10 +52,10 @@ void fold_vertices(const MeshTopology& mesh, const RoundStrip& strip, const Shar
       continue;
     }
     double t;
-    Vec3 image = fold_vertex(strip, mesh.point(v), strip.radius.at(v), o.snap, &t);
+    Vec3 image = fold_vertex(strip.frame(v), mesh.point(v), strip.radius.at(v), o.snap, &t);
     if (role == StripRole::End) {
       const StripEnd& end = strip.ends[strip.end_of.at(v)];
-      if (end.face) image = onto_end(strip, end, image);
+      if (end.face) image = onto_end(strip.frame(v), end, image);
     }
     fold.t[v] = t;
     fold.setback = std::max(fold.setback, (image - mesh.point(v)).norm());
@@ -72,9 +72,13 @@ int split_point(const MeshTopology& mesh, const RoundStrip& strip, MeshEdit& edi
   const Vec3 pu = edit.point(u), pv = edit.point(v);
   const double w = (0.5 - tu) / (tv - tu);
   Vec3 q = strip.corner + strip.axis * ((1 - w) * strip.s_of(pu) + w * strip.s_of(pv));
+  if (strip.curved) {  // between the two vertices' corner points (each in its own section)
+    const StripFrame &fu = strip.frame(u), &fv = strip.frame(v);
+    q = (1 - w) * (fu.corner + fu.axis * fu.s_of(pu)) + w * (fv.corner + fv.axis * fv.s_of(pv));
+  }
   auto eu = strip.end_of.find(u), ev = strip.end_of.find(v);
   if (eu != strip.end_of.end() && ev != strip.end_of.end() && eu->second == ev->second && strip.ends[eu->second].face)
-    q = onto_end(strip, strip.ends[eu->second], q);
+    q = onto_end(strip.curved ? strip.end_frame[eu->second] : strip, strip.ends[eu->second], q);
   (void)mesh;
   return fold.split[key] = edit.add_point(q);
 }
@@ -125,15 +129,16 @@ constexpr double kEndMargin = 0.25, kEndQualityDeg = 20;
 
 // A concave round fills the corner: its end face lies on the corner's side of the arc, away from the ball's
 // centre (a convex round's end face lies on the centre's side). Voted over the end facets along the arc.
-bool concave_at(const MeshTopology& mesh, const RoundStrip& strip, const StripEnd& end, double r) {
-  const Vec3 O = r * strip.centre_dir;
+bool concave_at(const MeshTopology& mesh, const RoundStrip& round, const StripEnd& end, double r) {
   int votes = 0;
   for (int g : end.facets) {
     int on[3], n_on = 0, off = -1;
     for (int k = 0; k < 3; ++k)
-      if (strip.role.count(mesh.F(g, k))) on[n_on++] = mesh.F(g, k);
+      if (round.role.count(mesh.F(g, k))) on[n_on++] = mesh.F(g, k);
       else off = mesh.F(g, k);
     if (n_on != 2 || off < 0) continue;
+    const StripFrame& strip = round.frame(on[0]);
+    const Vec3 O = r * strip.centre_dir;
     const Vec3 a = strip.across(mesh.point(on[0])), b = strip.across(mesh.point(on[1])), x = strip.across(mesh.point(off));
     const Vec3 side = (b - a).cross(strip.axis);  // the chord's normal in the section
     votes += side.dot(x - a) * side.dot(O - a) < 0 ? 1 : -1;
@@ -144,7 +149,9 @@ bool concave_at(const MeshTopology& mesh, const RoundStrip& strip, const StripEn
 // The end face's facets re-meshed near the corner: those touching a moved vertex, and for a concave round
 // those reaching into the corner the round filled (on the round's side of both planes), are replaced by a
 // triangulation of their outline, whose arc now runs along the two sides to the corner.
-int remesh_end(const MeshTopology& mesh, const RoundStrip& strip, int e, double r, double flat_deg, MeshEdit& edit, const Fold& fold) {
+int remesh_end(const MeshTopology& mesh, const RoundStrip& round, int e, double r, double flat_deg, MeshEdit& edit, const Fold& fold) {
+  const RoundStrip& strip = round;
+  const StripFrame& frame = round.curved ? round.end_frame[e] : round;  // the planes and corner line at this end
   const StripEnd& end = strip.ends[e];
   const double cos_flat = std::cos(2 * flat_deg * M_PI / 180);
   auto on_face = [&](int g) { return !strip.facet_set.count(g) && std::abs(mesh.facet_normal(g).dot(end.normal)) >= cos_flat; };
@@ -161,8 +168,8 @@ int remesh_end(const MeshTopology& mesh, const RoundStrip& strip, int e, double 
     const double margin = kEndMargin * r;
     auto in_corner = [&](int v) {
       const Vec3 p = mesh.point(v);
-      return strip.side[0] * (strip.normal[0].dot(p) - strip.offset[0]) > -margin && strip.side[1] * (strip.normal[1].dot(p) - strip.offset[1]) > -margin &&
-             strip.across(p).norm() <= (1 + kEndMargin) * r && !strip.role.count(v);
+      return frame.side[0] * (frame.normal[0].dot(p) - frame.offset[0]) > -margin && frame.side[1] * (frame.normal[1].dot(p) - frame.offset[1]) > -margin &&
+             frame.across(p).norm() <= (1 + kEndMargin) * r && !strip.role.count(v);
     };
     while (!queue.empty()) {
       const int f = queue.back();
@@ -203,7 +210,7 @@ int remesh_end(const MeshTopology& mesh, const RoundStrip& strip, int e, double 
   Vec3 normal = Vec3::Zero();  // Newell's normal of the outline
   for (size_t i = 0; i < loop.size(); ++i) normal += edit.point(loop[i]).cross(edit.point(loop[(i + 1) % loop.size()]));
   for (int f : patch) edit.removed.insert(f);
-  const Vec3 corner = strip.corner, axis = strip.axis;
+  const Vec3 corner = frame.corner, axis = frame.axis;
   Refinement fill;
   fill.quality_deg = kEndQualityDeg;
   fill.admit = [corner, axis, r](const Vec3& p) { const Vec3 d = p - corner; return (d - axis * axis.dot(d)).norm() <= (1 + kEndMargin) * r; };
@@ -219,9 +226,9 @@ constexpr double kMergeShare = 0.25;
 
 int merge_close_points(const MeshTopology& mesh, const RoundStrip& strip, MeshEdit& edit, const Fold& fold) {
   std::vector<std::pair<double, int>> line;  // (s, vertex) of every vertex on the corner line
-  for (const auto& [key, q] : fold.split) (void)key, line.push_back({strip.s_of(edit.point(q)), q});
+  for (const auto& [key, q] : fold.split) (void)key, line.push_back({strip.param(edit.point(q)), q});
   for (const auto& [v, t] : fold.t)
-    if (t == 0.5) line.push_back({strip.s_of(edit.point(v)), v});
+    if (t == 0.5) line.push_back({strip.param(edit.point(v)), v});
   if (line.size() < 3) return 0;
   std::sort(line.begin(), line.end());
   std::vector<double> gaps;
@@ -257,6 +264,15 @@ SharpChain corner_chain(const RoundStrip& strip) {
   chain.points = {strip.corner + strip.s_lo * strip.axis, strip.corner + strip.s_hi * strip.axis};
   chain.arc_length = {0.0, strip.s_hi - strip.s_lo};
   chain.length = strip.s_hi - strip.s_lo;
+  if (strip.curved) {  // the stations' corner points between the ends
+    chain.points = {strip.point_at(strip.s_lo)};
+    for (size_t i = 0; i < strip.line.size(); ++i)
+      if (strip.line_s[i] > strip.s_lo && strip.line_s[i] < strip.s_hi) chain.points.push_back(strip.line[i]);
+    chain.points.push_back(strip.point_at(strip.s_hi));
+    chain.arc_length = {0.0};
+    for (size_t i = 1; i < chain.points.size(); ++i) chain.arc_length.push_back(chain.arc_length.back() + (chain.points[i] - chain.points[i - 1]).norm());
+    chain.length = chain.arc_length.back();
+  }
   return chain;
 }
 
@@ -296,7 +312,8 @@ StripReport sharpen_one(const MeshTopology& mesh, const Vec3& seed, const Sharpe
   rep.convex = true;
   for (int e = 0; e < 2; ++e)
     if (strip.ends[e].face) rep.convex = !concave_at(mesh, strip, strip.ends[e], rep.found_radius);
-  rep.corner[0] = chain.points[0], rep.corner[1] = chain.points[1];
+  rep.corner[0] = chain.points.front(), rep.corner[1] = chain.points.back();
+  rep.corner_line = chain.points;
   rep.strip_facets = int(strip.facets.size());
   rep.border_vertices[0] = strip.border_count[0], rep.border_vertices[1] = strip.border_count[1];
   rep.recognised = strip.recognised;
@@ -317,6 +334,14 @@ void validate(const SharpenOptions& o) {
 // A seed on a strip sharpened before in the same call (within 2 r of its corner line, along it).
 bool already_done(const std::vector<StripReport>& done, const Vec3& seed) {
   for (const StripReport& s : done) {
+    if (s.corner_line.size() > 2) {  // a curved corner line: near one of its segments
+      for (size_t i = 0; i + 1 < s.corner_line.size(); ++i) {
+        const Vec3 a = s.corner_line[i], d = s.corner_line[i + 1] - a;
+        const double w = std::clamp(d.dot(seed - a) / std::max(d.squaredNorm(), 1e-300), 0.0, 1.0);
+        if ((a + w * d - seed).norm() <= 2 * s.found_radius) return true;
+      }
+      continue;
+    }
     const Vec3 d = s.corner[1] - s.corner[0];
     const double L = d.norm(), along = d.dot(seed - s.corner[0]) / L;
     const double off = (seed - s.corner[0] - d * (along / L)).norm();
@@ -373,7 +398,8 @@ ChangeRadiusResult change_radius(const Points& V, const Triangles& F, const std:
     return out;
   }
   std::vector<Vec3> corner_seeds;
-  for (const StripReport& s : sharp.strips) corner_seeds.push_back(0.5 * (s.corner[0] + s.corner[1]));
+  for (const StripReport& s : sharp.strips)
+    corner_seeds.push_back(s.corner_line.size() > 2 ? s.corner_line[s.corner_line.size() / 2] : Vec3(0.5 * (s.corner[0] + s.corner[1])));
   RoundOptions again = round;
   again.write_arrays = false;  // made below, with where each vertex and facet comes from
   out.round = round_edges(sharp.vertices, sharp.triangles, corner_seeds, again);

@@ -111,7 +111,7 @@ constexpr size_t kLocalFacets = 60;
 // The axis the flood's normals turn about: the direction they are all (nearly) perpendicular to. The
 // flood (breadth first from the seed) failing that while its first kLocalFacets pass is a round whose
 // axis turns along it: a chain curved in plan, or rounds going on into others through corner blends.
-Vec3 turning_axis(Facets& fx, const std::vector<int>& facets, const Vec3& where, double tilt_deg) {
+Vec3 turning_axis(Facets& fx, const std::vector<int>& facets, const Vec3& where, double tilt_deg, bool* turns = nullptr) {
   const double tilt2 = std::pow(std::sin(tilt_deg * kDeg), 2);
   double total = 0;
   const auto eig = normal_spread(fx, facets.begin(), facets.end(), &total);
@@ -119,7 +119,10 @@ Vec3 turning_axis(Facets& fx, const std::vector<int>& facets, const Vec3& where,
   if (!(total > 0) || lam(0) > tilt2 * total) {
     double local_total = 0;
     const auto near = normal_spread(fx, facets.begin(), facets.begin() + std::min(facets.size(), kLocalFacets), &local_total);
-    if (facets.size() > kLocalFacets && local_total > 0 && near.eigenvalues()(0) <= tilt2 * local_total && near.eigenvalues()(1) >= 1e-8 * local_total)
+    const bool local = facets.size() > kLocalFacets && local_total > 0 && near.eigenvalues()(0) <= tilt2 * local_total &&
+                       near.eigenvalues()(1) >= 1e-8 * local_total;
+    if (local && turns) return *turns = true, near.eigenvectors().col(0).normalized();
+    if (local)
       not_a_round("it is a round whose axis turns along its length (a chain curved in plan, as an S-shaped edge or a circular "
                   "pocket's rim, or rounds running on into each other through corner blends, as around a pocket's rim); "
                   "only a straight round between two flat sides can be changed", where);
@@ -153,7 +156,7 @@ Vec3 turning_axis(Facets& fx, const std::vector<int>& facets, const Vec3& where,
 
 // Step 2's end: each side's plane normal from its candidates (one normal per side, else refused).
 void side_normals(Facets& fx, const std::vector<int>& beside, const Vec3& n0, const Vec3& axis, const SharpenOptions& o,
-                  const Vec3& where, RoundStrip& strip) {
+                  const Vec3& where, RoundStrip& strip, bool* curved_side = nullptr) {
   Vec3 sum[2] = {Vec3::Zero(), Vec3::Zero()};
   std::vector<int> members[2];
   const double tilt = std::sin(o.facet_tilt_deg * kDeg);
@@ -168,7 +171,10 @@ void side_normals(Facets& fx, const std::vector<int>& beside, const Vec3& n0, co
     strip.normal[side] = sum[side].normalized();
     double offset = 0;
     for (int f : members[side]) {
-      if (angle_deg(fx.normal(f), strip.normal[side]) > 2 * o.flat_deg) refuse_side(fx, members[side], side, o, where);
+      if (angle_deg(fx.normal(f), strip.normal[side]) > 2 * o.flat_deg) {
+        if (curved_side) return void(*curved_side = true);
+        refuse_side(fx, members[side], side, o, where);
+      }
       offset += strip.normal[side].dot(fx.centroid(f));
     }
     strip.offset[side] = offset / double(members[side].size());
@@ -276,7 +282,7 @@ void strip_ends(const MeshTopology& mesh, Facets& fx, const std::vector<std::pai
   Vec3 sum[2] = {Vec3::Zero(), Vec3::Zero()};
   for (const auto& [f, k] : end_edges) {
     const int a = mesh.F(f, k), b = mesh.F(f, (k + 1) % 3);
-    const int end = strip.s_of(0.5 * (mesh.point(a) + mesh.point(b))) < mid ? 0 : 1;
+    const int end = strip.param(0.5 * (mesh.point(a) + mesh.point(b))) < mid ? 0 : 1;
     for (int v : {a, b})
       if (strip.role[v] == StripRole::Inner || strip.role[v] == StripRole::End) strip.role[v] = StripRole::End, strip.end_of[v] = end;
     const int g = fx.across(f, k);
@@ -292,7 +298,7 @@ void strip_ends(const MeshTopology& mesh, Facets& fx, const std::vector<std::pai
     for (int g : e.facets)
       if (angle_deg(fx.normal(g), e.normal) > 2 * o.flat_deg)
         not_a_round("it ends on a face that is not flat (near " + format_point(fx.centroid(g)) + ")", where);
-    if (std::abs(e.normal.dot(strip.axis)) < 0.2) not_a_round("its end face runs nearly along it (near " + format_point(fx.centroid(e.facets[0])) + ")", where);
+    if (std::abs(e.normal.dot(strip.curved ? strip.end_frame[end].axis : strip.axis)) < 0.2) not_a_round("its end face runs nearly along it (near " + format_point(fx.centroid(e.facets[0])) + ")", where);
     double off = 0;
     int n = 0;
     for (const auto& [v, end_v] : strip.end_of)
@@ -302,7 +308,7 @@ void strip_ends(const MeshTopology& mesh, Facets& fx, const std::vector<std::pai
 }
 
 // Step 4: the radius of the ball tangent to both planes whose section circle passes through p.
-bool vertex_radius(const RoundStrip& strip, const Vec3& p, double* r) {
+bool vertex_radius(const StripFrame& strip, const Vec3& p, double* r) {
   const Vec3 P = strip.across(p), m = strip.centre_dir;
   const double k = m.squaredNorm() - 1, b = P.dot(m), c = P.squaredNorm();
   if (k <= 1e-12) return false;
@@ -314,6 +320,276 @@ bool vertex_radius(const RoundStrip& strip, const Vec3& p, double* r) {
   return false;
 }
 
+// A strip whose side B curves along the round (a wall curved in plan, vertical or drafted; side A flat):
+// side A is the largest plane beside the flood, side B the facets meeting A's normal at the angle most of
+// the area beyond the round has (the opening, one angle all along: a wall ruled across the round); the
+// strip is what turns between them. Each station (border B vertex; ordered along the border, nearest next)
+// gets its frame: plane A and side B's tangent plane there (normal to the axis and to side B's line in the
+// station's section, fitted to the side-B vertices nearly in it), their corner line and the ball's centre
+// direction; each strip vertex takes the frame of its nearest station, its corner point moved into its
+// own section. The corner line is the stations' corner points: the sharp edge rebuilt section by section,
+// exact where side B is ruled across the round but for taking a station's tangent plane half a border
+// spacing h away: within about (h/2)^2 / 2R, R side B's radius along the round. A closed loop (a round
+// all around a circular pocket) is refused (not done yet).
+constexpr double kStationTurnDeg = 15;  // largest turn of the corner line between two stations
+constexpr double kJoinDeg = 80;         // see recognise_curved's flood
+
+void recognise_curved(const MeshTopology& mesh, Facets& fx, int f0, const std::vector<int>& flood, const std::vector<int>& beside,
+                      const SharpenOptions& o, const Vec3& where, RoundStrip& strip, std::vector<std::pair<int, int>>& end_edges) {
+  const double fd2 = 2 * o.flat_deg;
+  // Side A: the largest group of coplanar candidates.
+  std::vector<std::pair<Vec3, double>> groups;  // (normal, area)
+  for (int f : beside) {
+    bool known = false;
+    for (auto& [n, a] : groups)
+      if (angle_deg(fx.normal(f), n) <= fd2) a += fx.area(f), known = true;
+    if (!known) groups.push_back({fx.normal(f), fx.area(f)});
+  }
+  if (groups.empty()) not_a_round("no flat face was found on either side", where);
+  const Vec3 nA = std::max_element(groups.begin(), groups.end(), [](auto& x, auto& y) { return x.second < y.second; })->first;
+  Vec3 sumA = Vec3::Zero();
+  for (int f : beside)
+    if (angle_deg(fx.normal(f), nA) <= fd2) sumA += fx.area(f) * fx.normal(f);
+  strip.normal[0] = sumA.normalized();
+  {  // sharper: the plane fitted to the group's vertices (a facet's normal carries its float32 rounding)
+    std::unordered_set<int> on;
+    for (int f : beside)
+      if (angle_deg(fx.normal(f), strip.normal[0]) <= fd2)
+        for (int k = 0; k < 3; ++k) on.insert(mesh.F(f, k));
+    Vec3 c = Vec3::Zero();
+    for (int v : on) c += mesh.point(v) / double(on.size());
+    Eigen::Matrix3d C = Eigen::Matrix3d::Zero();
+    for (int v : on) C += (mesh.point(v) - c) * (mesh.point(v) - c).transpose();
+    Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(C);
+    Vec3 fit = eig.eigenvectors().col(0).normalized();
+    if (fit.dot(strip.normal[0]) < 0) fit = -fit;
+    if (on.size() >= 4 && eig.eigenvalues()(1) > 0 && angle_deg(fit, strip.normal[0]) < fd2) strip.normal[0] = fit;
+    strip.offset[0] = strip.normal[0].dot(c);  // (through the plane's own vertices, not the border's: a
+                                               // sliver at an end may put a round's vertex on the border)
+  }
+  // The opening: the largest angle to side A that a tenth of the area of the fullest angle has, in bins
+  // of 2 flat_deg (side B's facets: one angle all along; the round's spread over the angles between).
+  std::unordered_map<int, double> bins;
+  for (const std::vector<int>* list : {&flood, &beside})
+    for (int f : *list) bins[int(std::floor(angle_deg(fx.normal(f), strip.normal[0]) / fd2))] += fx.area(f);
+  double fullest = 0;
+  for (const auto& [b, a] : bins)
+    if (b * fd2 > 4 * fd2) fullest = std::max(fullest, a);
+  int top_bin = -1;
+  for (const auto& [b, a] : bins)
+    if (b * fd2 > 4 * fd2 && a >= 0.1 * fullest && b > top_bin) top_bin = b;
+  if (top_bin < 0) not_a_round("no second side was found beside it", where);
+  double opening = 0, opening_area = 0;  // the area-weighted mean angle in that bin and its neighbours
+  for (const std::vector<int>* list : {&flood, &beside})
+    for (int f : *list) {
+      const double a = angle_deg(fx.normal(f), strip.normal[0]);
+      if (std::abs(a - (top_bin + 0.5) * fd2) <= 1.5 * fd2) opening += fx.area(f) * a, opening_area += fx.area(f);
+    }
+  opening /= opening_area;
+  if (opening < 4 * fd2 || opening > 180 - 4 * fd2) not_a_round("its sides do not meet at an angle (no sharp edge to rebuild)", where);
+  auto side_of = [&](int g) {
+    const double a = angle_deg(fx.normal(g), strip.normal[0]);
+    if (a < fd2) return 0;
+    if (a > opening - fd2) return 1;
+    return -1;
+  };
+  if (side_of(f0) >= 0) not_a_round("the seed's facet lies on a side beside a round, not on the round", where);
+  // The strip, its borders and ends (as flood_strip, the sides told by their angle to side A).
+  std::vector<std::pair<int, int>> border_b;  // (border B vertex, the side-B facet across the border there)
+  std::vector<std::pair<int, int>> border_edges;  // (strip facet, edge) of each border B edge
+  strip.facet_set.insert(f0);
+  std::deque<int> queue{f0};
+  while (!queue.empty()) {
+    const int f = queue.front();
+    queue.pop_front();
+    strip.facets.push_back(f);
+    if (long(strip.facets.size()) > o.max_new_facets) check_work_budget(double(strip.facets.size()), o.max_new_facets, "strip recognition");
+    for (int k = 0; k < 3; ++k) {
+      const int a = mesh.F(f, k), b = mesh.F(f, (k + 1) % 3);
+      for (int v : {a, b}) strip.role.emplace(v, StripRole::Inner);
+      const int g = fx.across(f, k);
+      if (g >= 0 && strip.facet_set.count(g)) continue;
+      const int side = g >= 0 ? side_of(g) : -1;
+      // (a facet turning like neither side joins while it turns by less than kJoinDeg: a mesher's folded
+      // sliver on a seam between two round faces turns by a little over strip_turn_deg)
+      if (g >= 0 && side < 0 && angle_deg(fx.normal(f), fx.normal(g)) < std::max(o.strip_turn_deg, kJoinDeg)) {
+        strip.facet_set.insert(g), queue.push_back(g);
+      } else if (side >= 0 && fx.smooth(f, g)) {
+        for (int v : {a, b}) strip.role[v] = side ? StripRole::BorderB : StripRole::BorderA;
+        if (side) border_b.push_back({a, g}), border_b.push_back({b, g}), border_edges.push_back({f, k});
+      } else {
+        end_edges.push_back({f, k});
+      }
+    }
+  }
+  if (end_edges.empty()) not_a_round("it runs all around a closed loop (a circular pocket's or boss's rim: not done yet)", where);
+  // Plane A's border.
+  int n = 0;
+  for (const auto& [v, role] : strip.role)
+    if (role == StripRole::BorderA) ++n;
+  if (n < 2) not_a_round("its flat side's border has fewer than two vertices", where);
+  strip.border_count[0] = n;
+  // Side B's tangent plane at each border B vertex: its normal from the side-B facets around it that turn
+  // with the one across the border there (not an end face's), weighted by their angles at the vertex.
+  std::unordered_map<int, Vec3> anchor;
+  for (const auto& [v, g] : border_b) anchor.emplace(v, fx.normal(g));
+  if (anchor.size() < 2) not_a_round("its curved side's border has fewer than two vertices", where);
+  strip.border_count[1] = int(anchor.size());
+  std::vector<StripFrame> station;
+  std::vector<int> station_vertex;  // the border B vertex of each
+  for (const auto& [b, an] : anchor) {
+    Vec3 nB = Vec3::Zero();
+    for (const int* g = mesh.facets_begin(b); g != mesh.facets_end(b); ++g) {
+      if (strip.facet_set.count(*g) || side_of(*g) != 1 || angle_deg(fx.normal(*g), an) > kStationTurnDeg) continue;
+      int k = 0;
+      while (mesh.F(*g, k) != b) ++k;
+      const Vec3 u = mesh.point(mesh.F(*g, (k + 1) % 3)) - mesh.point(b), w = mesh.point(mesh.F(*g, (k + 2) % 3)) - mesh.point(b);
+      nB += std::atan2(u.cross(w).norm(), u.dot(w)) * fx.normal(*g);  // weighted by the facet's angle at b
+    }
+    if (nB.norm() < 1e-12) continue;
+    nB.normalize();
+    // Sharper (the facets of a tessellated curved wall tilt by their chords): side B's line in b's own
+    // section, through b and the side-B vertices within three rings of it that lie nearly in that section
+    // (|along| < 0.35 of the ring's mean edge), projected into it; nB is normal to it and to the axis.
+    {
+      const Vec3 t = strip.normal[0].cross(nB).normalized();
+      std::unordered_set<int> ring{b};
+      for (int pass = 0; pass < 3; ++pass) {
+        std::vector<int> grow(ring.begin(), ring.end());
+        for (int v : grow)
+          for (const int* g = mesh.facets_begin(v); g != mesh.facets_end(v); ++g)
+            if (!strip.facet_set.count(*g) && side_of(*g) == 1 && angle_deg(fx.normal(*g), nB) <= kStationTurnDeg)
+              for (int k = 0; k < 3; ++k) ring.insert(mesh.F(*g, k));
+      }
+      double h = 0;
+      int nh = 0;
+      for (const int* g = mesh.facets_begin(b); g != mesh.facets_end(b); ++g)
+        for (int k = 0; k < 3; ++k) h += (mesh.corner(*g, k) - mesh.corner(*g, (k + 1) % 3)).norm(), ++nh;
+      h /= std::max(nh, 1);
+      Eigen::Matrix3d C = Eigen::Matrix3d::Zero();
+      int used = 0;
+      for (int v : ring) {
+        const Vec3 d = mesh.point(v) - mesh.point(b);
+        if (v == b || std::abs(t.dot(d)) > 0.35 * h || d.norm() < 0.2 * h) continue;
+        const Vec3 q = d - t * t.dot(d);
+        C += q * q.transpose() / q.squaredNorm(), ++used;
+      }
+      if (used >= 1) {
+        Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(C);
+        const Vec3 down = eig.eigenvectors().col(2).normalized();
+        Vec3 fit = down.cross(t).normalized();
+        if (fit.dot(nB) < 0) fit = -fit;
+        if (angle_deg(fit, nB) < 5) nB = fit;
+      }
+    }
+    StripFrame F;
+    F.normal[0] = strip.normal[0], F.offset[0] = strip.offset[0];
+    F.normal[1] = nB, F.offset[1] = F.normal[1].dot(mesh.point(b));
+    F.axis = F.normal[0].cross(F.normal[1]);
+    if (F.axis.norm() < 1e-6) not_a_round("its two sides are parallel at " + format_point(mesh.point(b)), where);
+    F.axis.normalize();
+    Eigen::Matrix3d M;
+    M.row(0) = F.normal[0].transpose(), M.row(1) = F.normal[1].transpose(), M.row(2) = F.axis.transpose();
+    F.corner = M.fullPivLu().solve(Eigen::Vector3d(F.offset[0], F.offset[1], F.axis.dot(mesh.point(b))));
+    station.push_back(F), station_vertex.push_back(b);
+  }
+  // In order along the corner line: from the station farthest from their middle, each next the nearest.
+  {
+    Vec3 middle = Vec3::Zero();
+    for (const StripFrame& F : station) middle += F.corner / double(station.size());
+    size_t first = 0;
+    for (size_t i = 1; i < station.size(); ++i)
+      if ((station[i].corner - middle).squaredNorm() > (station[first].corner - middle).squaredNorm()) first = i;
+    std::swap(station[0], station[first]), std::swap(station_vertex[0], station_vertex[first]);
+    for (size_t i = 1; i < station.size(); ++i) {
+      size_t best = i;
+      for (size_t j = i + 1; j < station.size(); ++j)
+        if ((station[j].corner - station[i - 1].corner).squaredNorm() < (station[best].corner - station[i - 1].corner).squaredNorm()) best = j;
+      std::swap(station[i], station[best]), std::swap(station_vertex[i], station_vertex[best]);
+    }
+  }
+  // The run of stations through the seed's whose corner line turns by kStationTurnDeg at most from one to
+  // the next; a station or two beyond it at an end (an end face's facets across a sliver) are dropped.
+  {
+    std::vector<double> turn(station.size(), 0);
+    for (size_t i = 1; i < station.size(); ++i)
+      turn[i] = std::acos(std::min(1.0, std::abs(station[i].axis.dot(station[i - 1].axis)))) / kDeg;
+    size_t seed_at = 0;
+    for (size_t i = 1; i < station.size(); ++i)
+      if ((station[i].corner - where).squaredNorm() < (station[seed_at].corner - where).squaredNorm()) seed_at = i;
+    size_t lo = seed_at, hi = seed_at;
+    while (lo > 0 && turn[lo] <= kStationTurnDeg) --lo;
+    while (hi + 1 < station.size() && turn[hi + 1] <= kStationTurnDeg) ++hi;
+    if (lo > 2 || station.size() - 1 - hi > 2) {
+      const size_t at = lo > 2 ? lo : hi + 1;
+      not_a_round("its corner line turns by " + format_number(turn[at]) + " deg at " + format_point(station[at].corner) +
+                  " (a corner of its curved side, or a corner blend where rounds meet, as around a pocket's rim: not done yet)", where);
+    }
+    station = std::vector<StripFrame>(station.begin() + long(lo), station.begin() + long(hi) + 1);
+    // The border edges at a dropped station are the strip's end there (across them: an end face's
+    // facets, reached through a mesher's sliver); their vertices are the strip's.
+    const std::unordered_set<int> kept(station_vertex.begin() + long(lo), station_vertex.begin() + long(hi) + 1);
+    for (const auto& [f, k] : border_edges) {
+      const int a = mesh.F(f, k), b = mesh.F(f, (k + 1) % 3);
+      if (kept.count(a) && kept.count(b)) continue;
+      end_edges.push_back({f, k});
+      for (int v : {a, b})
+        if (!kept.count(v)) strip.role[v] = StripRole::Inner;
+    }
+    strip.border_count[1] = int(kept.size());
+    if (station.size() < 2) not_a_round("its curved side's border has fewer than two stations", where);
+  }
+  for (size_t i = 0; i < station.size(); ++i) {
+    StripFrame& F = station[i];
+    const Vec3 along = i > 0 ? station[i - 1].axis : Vec3(station[std::min<size_t>(1, station.size() - 1)].corner - F.corner);
+    if (F.axis.dot(along) < 0) F.axis = -F.axis;
+  }
+  // The strip vertices' stations (nearest corner point), the side of each plane the round lies on.
+  std::unordered_map<int, size_t> at;
+  for (const auto& [v, role] : strip.role) {
+    size_t best = 0;
+    for (size_t i = 1; i < station.size(); ++i)
+      if ((station[i].corner - mesh.point(v)).squaredNorm() < (station[best].corner - mesh.point(v)).squaredNorm()) best = i;
+    at[v] = best;
+  }
+  const double slack = 1e-6 * (station.front().corner - station.back().corner).norm() + 1e-9;
+  for (int side = 0; side < 2; ++side) {
+    double total = 0;
+    for (const auto& [v, role] : strip.role)
+      if (role == StripRole::Inner || role == StripRole::End)
+        total += station[at[v]].normal[side].dot(mesh.point(v)) - station[at[v]].offset[side];
+    if (std::abs(total) <= slack) not_a_round("it has no vertex off its sides (one element across: the radius is not defined)", where);
+    strip.side[side] = total > 0 ? 1.0 : -1.0;
+  }
+  double s = 0;
+  for (size_t i = 0; i < station.size(); ++i) {
+    StripFrame& F = station[i];
+    F.side[0] = strip.side[0], F.side[1] = strip.side[1];
+    Eigen::Matrix3d M;
+    M.row(0) = F.normal[0].transpose(), M.row(1) = F.normal[1].transpose(), M.row(2) = F.axis.transpose();
+    F.centre_dir = M.fullPivLu().solve(Eigen::Vector3d(F.side[0], F.side[1], 0));
+    if (i > 0) s += (F.corner - station[i - 1].corner).norm();
+    strip.line.push_back(F.corner), strip.line_s.push_back(s);
+  }
+  // A vertex's frame: its nearest station's, the corner point moved into the vertex's own section.
+  for (const auto& [v, role] : strip.role) {
+    const Vec3 p = mesh.point(v);
+    StripFrame F = station[at[v]];
+    F.corner += F.axis * F.axis.dot(p - F.corner);  // its own section's corner point
+    strip.frames.emplace(v, F);
+  }
+  strip.curved = true;
+  // The strip's own frame: the seed's station's; the line's frames; the ends' (the first and last station).
+  size_t seed_at = 0;
+  for (size_t i = 1; i < station.size(); ++i)
+    if ((station[i].corner - where).squaredNorm() < (station[seed_at].corner - where).squaredNorm()) seed_at = i;
+  static_cast<StripFrame&>(strip) = station[seed_at];
+  strip.stations = std::move(station);
+  strip.end_frame[0] = strip.stations.front(), strip.end_frame[1] = strip.stations.back();
+  strip.s_lo = INFINITY, strip.s_hi = -INFINITY;
+  for (const auto& [v, role] : strip.role) strip.s_lo = std::min(strip.s_lo, strip.param(mesh.point(v))), strip.s_hi = std::max(strip.s_hi, strip.param(mesh.point(v)));
+}
+
 }  // namespace
 
 RoundStrip recognise_strip(const MeshTopology& mesh, const Vec3& seed, const SharpenOptions& o) {
@@ -323,26 +599,52 @@ RoundStrip recognise_strip(const MeshTopology& mesh, const Vec3& seed, const Sha
   std::vector<int> curved, beside;
   flood_curved(fx, f0, o.max_new_facets, curved, beside);
   RoundStrip strip;
-  const Vec3 axis0 = turning_axis(fx, curved, seed, o.axis_tilt_deg);
-  side_normals(fx, beside, fx.normal(f0), axis0, o, seed, strip);
-  strip.axis = strip.normal[0].cross(strip.normal[1]);
-  if (strip.axis.norm() < 1e-6) not_a_round("its two sides are parallel (no sharp edge to rebuild)", seed);
-  strip.axis.normalize();
+  bool turns = false, curved_side = false;
+  const Vec3 axis0 = turning_axis(fx, curved, seed, o.axis_tilt_deg, &turns);
+  if (!turns) side_normals(fx, beside, fx.normal(f0), axis0, o, seed, strip, &curved_side);
   std::vector<std::pair<int, int>> end_edges;
-  flood_strip(mesh, fx, f0, o, seed, strip, end_edges);
-  side_planes(mesh, seed, strip);
+  if (turns || curved_side) {
+    recognise_curved(mesh, fx, f0, curved, beside, o, seed, strip, end_edges);
+  } else {
+    strip.axis = strip.normal[0].cross(strip.normal[1]);
+    if (strip.axis.norm() < 1e-6) not_a_round("its two sides are parallel (no sharp edge to rebuild)", seed);
+    strip.axis.normalize();
+    flood_strip(mesh, fx, f0, o, seed, strip, end_edges);
+    side_planes(mesh, seed, strip);
+  }
   strip_ends(mesh, fx, end_edges, o, seed, strip);
+  if (strip.curved) {
+    // A vertex a hair outside a side's plane (its station's tangent plane, within measure_clearance of its
+    // distance from the corner: a curved side's tangent plane is taken at the nearest station) lies on
+    // that side's border: it stays where it is.
+    for (auto& [v, role] : strip.role) {
+      if (role != StripRole::Inner) continue;
+      const StripFrame& F = strip.frame(v);
+      const Vec3 p = mesh.point(v);
+      double r;
+      if (vertex_radius(F, p, &r)) continue;
+      const double reach = o.measure_clearance * F.across(p).norm();
+      for (int side = 0; side < 2; ++side)
+        if (std::abs(F.normal[side].dot(p) - F.offset[side]) <= reach) role = side ? StripRole::BorderB : StripRole::BorderA;
+    }
+  }
   for (const auto& [v, role] : strip.role) {
     if (role != StripRole::Inner && role != StripRole::End) continue;
     double r;
-    if (!vertex_radius(strip, mesh.point(v), &r))
+    if (!vertex_radius(strip.frame(v), mesh.point(v), &r))
       not_a_round("no ball tangent to both sides passes through its vertex at " + format_point(mesh.point(v)), seed);
     strip.radius[v] = r;
   }
   if (strip.radius.empty()) not_a_round("it has no vertex between its borders (one element across: the radius is not defined)", seed);
-  strip.recognised = "curved facets flooded from the seed (" + std::to_string(curved.size()) + "), flanked by two flat sides (" +
-                     format_number(angle_deg(strip.normal[0], strip.normal[1])) + " deg apart); strip = " +
-                     std::to_string(strip.facets.size()) + " facets turning about the corner line between them";
+  if (strip.curved)
+    strip.recognised = "curved facets flooded from the seed (" + std::to_string(curved.size()) + "), flanked by a flat side and a side "
+                       "curved along the round (" + format_number(angle_deg(strip.normal[0], strip.normal[1])) + " deg apart); strip = " +
+                       std::to_string(strip.facets.size()) + " facets turning about the corner line between them, " +
+                       std::to_string(strip.line.size()) + " stations along it";
+  else
+    strip.recognised = "curved facets flooded from the seed (" + std::to_string(curved.size()) + "), flanked by two flat sides (" +
+                       format_number(angle_deg(strip.normal[0], strip.normal[1])) + " deg apart); strip = " +
+                       std::to_string(strip.facets.size()) + " facets turning about the corner line between them";
   return strip;
 }
 
@@ -354,13 +656,14 @@ void measure_law(const MeshTopology& mesh, const RoundStrip& strip, const Sharpe
   // off the plane moves the tangent ball a lot): left out while others are there.
   auto clear = [&](int v, double r) {
     const Vec3 p = mesh.point(v);
-    return std::min(std::abs(strip.normal[0].dot(p) - strip.offset[0]), std::abs(strip.normal[1].dot(p) - strip.offset[1])) >= o.measure_clearance * r;
+    const StripFrame& f = strip.frame(v);
+    return std::min(std::abs(f.normal[0].dot(p) - f.offset[0]), std::abs(f.normal[1].dot(p) - f.offset[1])) >= o.measure_clearance * r;
   };
   bool any_clear = false;
   for (const auto& [v, r] : strip.radius) any_clear |= clear(v, r);
   for (const auto& [v, r] : strip.radius) {
     if (any_clear && !clear(v, r)) continue;
-    sr.push_back({strip.s_of(mesh.point(v)), r});
+    sr.push_back({strip.param(mesh.point(v)), r});
     sum += r;
     rep.radius_min = std::min(rep.radius_min, r), rep.radius_max = std::max(rep.radius_max, r);
   }
@@ -395,14 +698,31 @@ void measure_law(const MeshTopology& mesh, const RoundStrip& strip, const Sharpe
     rep.fit_residual = 0;
     Vec3 worst = strip.corner;
     for (const auto& [s, rv] : sr)
-      if (std::abs(rv - law_at(s)) > rep.fit_residual) rep.fit_residual = std::abs(rv - law_at(s)), worst = strip.corner + s * strip.axis;
+      if (std::abs(rv - law_at(s)) > rep.fit_residual) rep.fit_residual = std::abs(rv - law_at(s)), worst = strip.point_at(s);
     if (rep.fit_residual > tol)
       throw RoundingError(ErrorCode::NotARound, "the strip along " + format_point(worst) + " is not a round: the radius is not defined there "
                           "(the balls tangent to both sides through its vertices range over " + format_number(rep.radius_min) + " .. " +
                           format_number(rep.radius_max) + " mm and stray by " + format_number(rep.fit_residual) + " mm from any law along it, over " +
                           format_number(100 * o.fit_tolerance) + "% of r)");
   }
-  for (double s : rep.law_s) rep.law_points.push_back(strip.corner + s * strip.axis);
+  for (double s : rep.law_s) rep.law_points.push_back(strip.point_at(s));
+}
+
+double RoundStrip::param(const Vec3& p) const {
+  if (!curved) return s_of(p);
+  size_t best = 0;
+  for (size_t i = 1; i < line.size(); ++i)
+    if ((line[i] - p).squaredNorm() < (line[best] - p).squaredNorm()) best = i;
+  return line_s[best] + stations[best].axis.dot(p - line[best]);
+}
+
+Vec3 RoundStrip::point_at(double s) const {
+  if (!curved) return corner + s * axis;
+  if (s <= line_s.front()) return line.front() + (s - line_s.front()) * stations.front().axis;
+  if (s >= line_s.back()) return line.back() + (s - line_s.back()) * stations.back().axis;
+  const size_t j = std::upper_bound(line_s.begin(), line_s.end(), s) - line_s.begin();
+  const double w = (s - line_s[j - 1]) / (line_s[j] - line_s[j - 1]);
+  return (1 - w) * line[j - 1] + w * line[j];
 }
 
 }  // namespace meshround

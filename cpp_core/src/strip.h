@@ -36,25 +36,45 @@ struct StripEnd {
   double offset = 0;
 };
 
-struct RoundStrip {
-  std::vector<int> facets;
-  std::unordered_set<int> facet_set;
-  std::unordered_map<int, StripRole> role;  // every vertex of the strip
-  std::unordered_map<int, int> end_of;      // End vertices: which end (0: low s, 1: high s)
+// The two sides' planes and their corner line -- of the whole strip when both sides are flat, else of one
+// station (a strip vertex's section: the flat side's plane and the curved side's tangent plane there).
+struct StripFrame {
   Vec3 normal[2];                           // side planes (A, B): normal . x = offset
   double offset[2] = {0, 0};
   double side[2] = {0, 0};                  // +-1: the side of each plane the round (and its ball) lies on
   Vec3 axis, corner;                        // the corner line: corner + s axis
   Vec3 centre_dir;                          // the ball's centre in a section: its corner point + r centre_dir
+
+  double s_of(const Vec3& p) const { return axis.dot(p - corner); }
+  // p's component normal to the corner line, relative to it (a point of p's section).
+  Vec3 across(const Vec3& p) const { const Vec3 d = p - corner; return d - axis * axis.dot(d); }
+};
+
+// The strip's own frame (StripFrame base) is the seed's station; `curved`: side B curves along the round
+// (a wall curved in plan) and each vertex has its station's frame, the corner line is the polyline `line`.
+struct RoundStrip : StripFrame {
+  std::vector<int> facets;
+  std::unordered_set<int> facet_set;
+  std::unordered_map<int, StripRole> role;  // every vertex of the strip
+  std::unordered_map<int, int> end_of;      // End vertices: which end (0: low s, 1: high s)
   double s_lo = 0, s_hi = 0;                // the strip's extent along the corner line
   StripEnd ends[2];
   std::unordered_map<int, double> radius;   // measured radius at each Inner / End vertex
   int border_count[2] = {0, 0};
   std::string recognised;
 
-  double s_of(const Vec3& p) const { return axis.dot(p - corner); }
-  // p's component normal to the corner line, relative to it (a point of p's section).
-  Vec3 across(const Vec3& p) const { const Vec3 d = p - corner; return d - axis * axis.dot(d); }
+  bool curved = false;
+  std::unordered_map<int, StripFrame> frames;  // curved: each strip vertex's station
+  std::vector<Vec3> line;                      // curved: the corner line's points at the stations, in order ...
+  std::vector<double> line_s;                  // ... and their arc length
+  std::vector<StripFrame> stations;            // ... and frame
+  StripFrame end_frame[2];                     // curved: the frame at each end
+
+  const StripFrame& frame(int v) const { return curved ? frames.at(v) : *this; }
+  // Position along the corner line (its arc length for a curved strip: that of the nearest station).
+  double param(const Vec3& p) const;
+  // The corner line's point at position s (a curved strip's: on its polyline, extended at the ends).
+  Vec3 point_at(double s) const;
 };
 
 // Throws RoundingError(not_a_round) naming the place and the reason when the seed is not on a round

@@ -207,32 +207,83 @@ def s_plate(r0, bend=30.0, turn_deg=40.0):
     return filleted, face.valueAt(0.3 * u0 + 0.7 * u1, 0.5 * (v0 + v1))
 
 
-def test_round_with_a_side_curved_in_plan_is_refused_by_name():
-    """A round whose wall side curves along it (an S of two 40 degree arcs).  Not done yet (the sides must be
-    flat): refused with not_a_round naming the curved side, the input untouched."""
+def test_round_with_a_side_curved_in_plan_found_and_sharpened():
+    """A round whose wall side curves along it (an S of two 40 degree arcs of 30 mm, r0 = 3): recognised
+    with a flat side and a curved one, its radius found within 1 %, sharpened (the corner line on the top's
+    plane), sound.  (A new radius on this mesh is refused today by the output check at the chain's ends,
+    where MeshPart left folded slivers on the seams of the fillet's end arcs: result_invalid, nothing
+    changed.)"""
     solid, seed = s_plate(3.0)
     assert solid.isValid()
     mesh = MeshPart.meshFromShape(Shape=solid, MaxLength=0.4 * 3.0)
     before = mesh.Topology
-    with pytest.raises(MeshRound.RoundingError) as err:
-        MeshRound.change_radius(mesh, [seed], 4.5)
-    assert err.value.code == "not_a_round" and "curved along the round" in str(err.value), str(err.value)
+    res = MeshRound.change_radius(mesh, [seed], 0)
+    strip = res.report["strips"][0]
+    assert abs(strip["found_radius"] - 3.0) <= 0.01 * 3.0 and strip["constant"], strip
+    assert "curved along the round" in strip["recognised"] and len(strip["corner_line"]) > 10
+    line = np.array(strip["corner_line"])
+    assert np.abs(line[:, 2] - 10.0).max() <= 1e-4
+    topology_sound(res.mesh)
     assert mesh.Topology == before
 
 
-TURNS = "a round whose axis turns along its length"
+S_R0 = 4.0  # cases.s_plate: the issue's S-shaped chain (a 20 mm plate whose top back edge follows an S)
 
 
-@pytest.mark.parametrize("name,max_length", [("s_chain", 0.4), ("pocket_rim", 0.4), ("pocket_rim_square", 0.7)])
-def test_rounds_turning_along_their_length_are_refused_by_name(name, max_length):
-    """The issue's S-shaped chain (cases "s_chain": its rounds are tori and cylinders along the S), a circular
-    pocket's rim and a rectangular pocket's rim with OCCT's corner blends (a network: the four rounds run
-    on into each other): refused with not_a_round saying the round turns along its length (not "free-form"),
-    the input untouched."""
+@functools.lru_cache(maxsize=None)
+def s_case(r):
+    return cases.Case(f"reround_s_chain_{r:g}", cases.s_plate, r)
+
+
+@functools.lru_cache(maxsize=None)
+def s_mesh():
+    return MeshPart.meshFromShape(Shape=s_case(S_R0).reference, MaxLength=0.4 * S_R0)
+
+
+def test_s_chain_found_radius_and_sharp_edge():
+    """The S-shaped chain filleted by OCCT at 4 mm (tori along the arcs, cylinders along the straight runs),
+    meshed at 0.4 r0: the round found at 4 mm within 1 % (one side flat, the wall curved in plan), the sharp
+    edge rebuilt section by section within 0.01 r0 of the sharp solid's faces, watertight."""
+    old = s_case(S_R0)
+    res = MeshRound.change_radius(s_mesh(), [seed_on_round(old)], 0)
+    strip = res.report["strips"][0]
+    # (the radii measured at its vertices spread by about +-1 %: a curved side's tangent plane is taken at
+    # the nearest station, half a border spacing away; so the strip may not be reported constant)
+    assert abs(strip["found_radius"] - S_R0) <= 0.01 * S_R0, strip
+    assert "curved along the round" in strip["recognised"], strip
+    geo = reference.exact_geometry(old, 3.0)
+    V1, F1 = reference.mesh_arrays(res.mesh)
+    near = V1[geo["chain"].distance(V1) <= 2 * S_R0]
+    assert geo["sharp"].distance(near).max() <= 0.01 * S_R0
+    fillet_volume = abs(old.solid.Volume - old.reference.Volume)
+    assert abs(abs(reference.signed_volume(V1, F1)) - old.solid.Volume) <= 0.01 * fillet_volume
+    topology_sound(res.mesh)
+
+
+@pytest.mark.parametrize("r1", [6.0, 3.0])
+def test_s_chain_new_radius_against_occt(r1):
+    """The S-shaped chain's 4 mm round made 6 and 3 mm: within 0.01 r of OCCT's fillet of the sharp S plate
+    at r both ways, sound, nothing beyond the reach touched."""
+    mesh = s_mesh()
+    res = MeshRound.change_radius(mesh, [seed_on_round(s_case(S_R0))], r1)
+    row = reference.score(s_case(r1), mesh, res.mesh, res.report)
+    assert row["dev_out_to_ref"] <= DEVIATION and row["dev_ref_to_out"] <= DEVIATION, row
+    assert row["boundary_edges_out"] == 0 and row["nonmanifold_edges"] == 0 and row["misoriented_edges"] == 0, row
+    assert not row["self_intersections"] and row["orientation_kept"], row
+    assert row["far_vertices_lost"] == 0 and row["far_facets_lost"] == 0 and row["far_facets_added"] == 0, row
+
+
+@pytest.mark.parametrize("name,max_length,why", [
+    ("pocket_rim", 0.4, "runs all around a closed loop"),
+    ("pocket_rim_square", 0.7, "its corner line turns by 90 deg"),
+])
+def test_rims_not_done_yet_are_refused_by_name(name, max_length, why):
+    """A circular pocket's rim (a closed loop) and a rectangular pocket's rim with OCCT's corner blends (the
+    four rounds run on into each other): refused with not_a_round saying why, the input untouched."""
     case = cases.case(name)
     mesh = MeshPart.meshFromShape(Shape=case.reference, MaxLength=max_length * case.r_max)
     before = mesh.Topology
     with pytest.raises(MeshRound.RoundingError) as err:
         MeshRound.change_radius(mesh, [seed_on_round(case)], 1.5 * case.r_max)
-    assert err.value.code == "not_a_round" and TURNS in str(err.value), str(err.value)
+    assert err.value.code == "not_a_round" and why in str(err.value), str(err.value)
     assert mesh.Topology == before
