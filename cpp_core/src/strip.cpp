@@ -192,6 +192,27 @@ double plane_slack(const MeshTopology& mesh, int f) {
 
 namespace {
 
+// The breadth-first flood of a strip's facets from f0 (each one's vertices Inner until told otherwise):
+// visit(f, k, g) decides for edge k of strip facet f, whose neighbour g (-1: the mesh boundary) is not in
+// the strip yet, whether g joins it (true), else records what the edge is.
+template <class Visit>
+void flood_from(const MeshTopology& mesh, Facets& fx, int f0, const SharpenOptions& o, RoundStrip& strip, Visit visit) {
+  strip.facet_set.insert(f0);
+  std::deque<int> queue{f0};
+  while (!queue.empty()) {
+    const int f = queue.front();
+    queue.pop_front();
+    strip.facets.push_back(f);
+    if (long(strip.facets.size()) > o.max_new_facets) check_work_budget(double(strip.facets.size()), o.max_new_facets, "strip recognition");
+    for (int k = 0; k < 3; ++k) {
+      for (int v : {mesh.F(f, k), mesh.F(f, (k + 1) % 3)}) strip.role.emplace(v, StripRole::Inner);
+      const int g = fx.across(f, k);
+      if (g >= 0 && strip.facet_set.count(g)) continue;
+      if (visit(f, k, g)) strip.facet_set.insert(g), queue.push_back(g);
+    }
+  }
+}
+
 // Step 3: the strip's facets, and the role of each of its vertices from the facets across its boundary.
 void flood_strip(const MeshTopology& mesh, Facets& fx, int f0, const SharpenOptions& o, const Vec3& where, RoundStrip& strip,
                  std::vector<std::pair<int, int>>& end_edges) {
@@ -208,34 +229,21 @@ void flood_strip(const MeshTopology& mesh, Facets& fx, int f0, const SharpenOpti
   auto on_strip = [&](int g) { return side_of(g) < 0 && std::abs(fx.normal(g).dot(strip.axis)) <= tilt; };
   if (side_of(f0) >= 0) not_a_round("the seed's facet lies on a flat face beside a round, not on the round", where);
   if (!on_strip(f0)) not_a_round("the seed's facet turns like neither side's nor the round's", where);
-  strip.facet_set.insert(f0);
-  std::deque<int> queue{f0};
-  while (!queue.empty()) {
-    const int f = queue.front();
-    queue.pop_front();
-    strip.facets.push_back(f);
-    if (long(strip.facets.size()) > o.max_new_facets) check_work_budget(double(strip.facets.size()), o.max_new_facets, "strip recognition");
-    for (int k = 0; k < 3; ++k) {
-      const int a = mesh.F(f, k), b = mesh.F(f, (k + 1) % 3);
-      for (int v : {a, b}) strip.role.emplace(v, StripRole::Inner);
-      const int g = fx.across(f, k);
-      if (g >= 0 && strip.facet_set.count(g)) continue;
-      if (g >= 0 && fx.smooth(f, g) && on_strip(g)) {
-        strip.facet_set.insert(g), queue.push_back(g);
-        continue;
-      }
-      const int side = g >= 0 ? side_of(g) : -1;
-      if (side >= 0 && fx.smooth(f, g)) {
-        for (int v : {a, b}) strip.role[v] = side ? StripRole::BorderB : StripRole::BorderA;
-      } else if (g < 0 || !fx.smooth(f, g)) {
-        end_edges.push_back({f, k});
-      } else {
-        not_a_round("it runs on smoothly, at " + format_point(0.5 * (mesh.point(a) + mesh.point(b))) + " (a facet turned " +
-                    format_number(std::asin(std::min(1.0, std::abs(fx.normal(g).dot(strip.axis)))) / kDeg) + " deg off the corner line's normal plane)" +
-                    ", into a face that is neither of its flat sides (another round, a corner blend or a free-form face)", where);
-      }
+  flood_from(mesh, fx, f0, o, strip, [&](int f, int k, int g) {
+    const int a = mesh.F(f, k), b = mesh.F(f, (k + 1) % 3);
+    if (g >= 0 && fx.smooth(f, g) && on_strip(g)) return true;
+    const int side = g >= 0 ? side_of(g) : -1;
+    if (side >= 0 && fx.smooth(f, g)) {
+      for (int v : {a, b}) strip.role[v] = side ? StripRole::BorderB : StripRole::BorderA;
+    } else if (g < 0 || !fx.smooth(f, g)) {
+      end_edges.push_back({f, k});
+    } else {
+      not_a_round("it runs on smoothly, at " + format_point(0.5 * (mesh.point(a) + mesh.point(b))) + " (a facet turned " +
+                  format_number(std::asin(std::min(1.0, std::abs(fx.normal(g).dot(strip.axis)))) / kDeg) + " deg off the corner line's normal plane)" +
+                  ", into a face that is neither of its flat sides (another round, a corner blend or a free-form face)", where);
     }
-  }
+    return false;
+  });
   // A border's vertices are the border's even where an end edge also touches them.
 }
 
@@ -397,31 +405,20 @@ void recognise_curved(const MeshTopology& mesh, Facets& fx, int f0, const std::v
   // The strip, its borders and ends (as flood_strip, the sides told by their angle to side A).
   std::vector<std::pair<int, int>> border_b;  // (border B vertex, the side-B facet across the border there)
   std::vector<std::pair<int, int>> border_edges;  // (strip facet, edge) of each border B edge
-  strip.facet_set.insert(f0);
-  std::deque<int> queue{f0};
-  while (!queue.empty()) {
-    const int f = queue.front();
-    queue.pop_front();
-    strip.facets.push_back(f);
-    if (long(strip.facets.size()) > o.max_new_facets) check_work_budget(double(strip.facets.size()), o.max_new_facets, "strip recognition");
-    for (int k = 0; k < 3; ++k) {
-      const int a = mesh.F(f, k), b = mesh.F(f, (k + 1) % 3);
-      for (int v : {a, b}) strip.role.emplace(v, StripRole::Inner);
-      const int g = fx.across(f, k);
-      if (g >= 0 && strip.facet_set.count(g)) continue;
-      const int side = g >= 0 ? side_of(g) : -1;
-      // (a facet turning like neither side joins while it turns by less than kJoinDeg: a mesher's folded
-      // sliver on a seam between two round faces turns by a little over strip_turn_deg)
-      if (g >= 0 && side < 0 && angle_deg(fx.normal(f), fx.normal(g)) < std::max(o.strip_turn_deg, kJoinDeg)) {
-        strip.facet_set.insert(g), queue.push_back(g);
-      } else if (side >= 0 && fx.smooth(f, g)) {
-        for (int v : {a, b}) strip.role[v] = side ? StripRole::BorderB : StripRole::BorderA;
-        if (side) border_b.push_back({a, g}), border_b.push_back({b, g}), border_edges.push_back({f, k});
-      } else {
-        end_edges.push_back({f, k});
-      }
+  flood_from(mesh, fx, f0, o, strip, [&](int f, int k, int g) {
+    const int a = mesh.F(f, k), b = mesh.F(f, (k + 1) % 3);
+    const int side = g >= 0 ? side_of(g) : -1;
+    // (a facet turning like neither side joins while it turns by less than kJoinDeg: a mesher's folded
+    // sliver on a seam between two round faces turns by a little over strip_turn_deg)
+    if (g >= 0 && side < 0 && angle_deg(fx.normal(f), fx.normal(g)) < std::max(o.strip_turn_deg, kJoinDeg)) return true;
+    if (side >= 0 && fx.smooth(f, g)) {
+      for (int v : {a, b}) strip.role[v] = side ? StripRole::BorderB : StripRole::BorderA;
+      if (side) border_b.push_back({a, g}), border_b.push_back({b, g}), border_edges.push_back({f, k});
+    } else {
+      end_edges.push_back({f, k});
     }
-  }
+    return false;
+  });
   if (end_edges.empty()) not_a_round("it runs all around a closed loop (a circular pocket's or boss's rim: not done yet)", where);
   // Plane A's border.
   int n = 0;

@@ -251,6 +251,10 @@ def test_s_chain_found_radius_and_sharp_edge():
     # the nearest station, half a border spacing away; so the strip may not be reported constant)
     assert abs(strip["found_radius"] - S_R0) <= 0.01 * S_R0, strip
     assert "curved along the round" in strip["recognised"], strip
+    # the task panel's highlight of the round's facets (reround.strip_facet_indices, along the polyline)
+    from MeshRound import meshconv, reround
+    V0, T0 = meshconv.mesh_to_arrays(s_mesh())
+    assert abs(len(reround.strip_facet_indices(V0, T0, strip)) - strip["strip_facets"]) <= 0.1 * strip["strip_facets"]
     geo = reference.exact_geometry(old, 3.0)
     V1, F1 = reference.mesh_arrays(res.mesh)
     near = V1[geo["chain"].distance(V1) <= 2 * S_R0]

@@ -7,7 +7,9 @@
     res.report["strips"][0]["law"]             # per strip: [(x, y, z, r)] along the rebuilt edge
     res.report["strips"][0]["recognised"]      # how the strip was told from its sides
 
-Each seed picks a point on an existing round: a strip of facets turning between two flat sides.  The
+Each seed picks a point on an existing round: a strip of facets turning between two flat sides (or a flat
+side and one curved along the round, as a wall curved in plan: report["strips"][i]["corner_line"] is then
+the rebuilt edge as a polyline).  The
 engine (cpp_core sharpen.h) finds the strip, measures its radius at every vertex (the ball tangent to
 both sides through it), rebuilds the sharp edge the round replaced by extending the two sides to their
 corner line, then rounds that edge with round_edges' passes at `radius` (a number, or [(point, r)]
@@ -74,6 +76,9 @@ def strip_facet_indices(vertices, triangles, strip, slack=1e-3, flat_angle=0.5):
     Their count is a constant round's "strip_facets" (a variable one's within some 10 %); the task panel
     highlights them."""
     vertices, triangles = np.asarray(vertices, dtype=np.float64), np.asarray(triangles, dtype=np.int64)
+    line = np.asarray(strip.get("corner_line") or strip["corner"], dtype=np.float64).reshape(-1, 3)
+    if len(line) > 2:
+        return _curved_strip_facets(vertices, triangles, strip, line, slack, flat_angle)
     start, end = np.asarray(strip["corner"], dtype=np.float64)
     length = float(np.linalg.norm(end - start))
     axis = (end - start) / length
@@ -87,6 +92,29 @@ def strip_facet_indices(vertices, triangles, strip, slack=1e-3, flat_angle=0.5):
     turning = (np.abs(normals @ axis) < 0.5) & (np.abs(np.sum(normals * _unit(radial.mean(axis=1)), axis=1))
                                                  > math.sin(math.radians(flat_angle)))
     return np.flatnonzero(near & inside & turning)
+
+
+def _curved_strip_facets(vertices, triangles, strip, line, slack, flat_angle):
+    """strip_facet_indices for a strip whose corner line is a polyline (a side curved along the round): the
+    same tests, each vertex against its nearest segment (the largest radius of the law for the width)."""
+    width = max(row[3] for row in strip["law"]) * math.tan(math.radians(strip["opening_deg"]) / 2)
+    box_lo, box_hi = line.min(axis=0) - 2 * width, line.max(axis=0) + 2 * width
+    candidates = np.flatnonzero(((vertices[triangles] >= box_lo) & (vertices[triangles] <= box_hi)).all(axis=(1, 2)))
+    corners = vertices[triangles[candidates]].reshape(-1, 3)        # (3c, 3)
+    a, d = line[:-1], line[1:] - line[:-1]                          # segments
+    w = np.clip(np.einsum("pkj,kj->pk", corners[:, None, :] - a[None], d) / np.sum(d * d, axis=1), 0.0, 1.0)
+    foot = a[None] + w[..., None] * d[None]                         # (3c, k, 3)
+    dist = np.linalg.norm(corners[:, None, :] - foot, axis=2)
+    k = np.argmin(dist, axis=1)
+    radial = (corners - foot[np.arange(len(corners)), k]).reshape(-1, 3, 3)
+    axis = _unit(d[k]).reshape(-1, 3, 3)
+    inside = (((w[np.arange(len(corners)), k] > 0) | (k > 0)) & ((w[np.arange(len(corners)), k] < 1) | (k < len(d) - 1)))
+    near = (np.linalg.norm(radial, axis=2) <= width * (1 + slack) + slack * strip["found_radius"]).all(axis=1)
+    tri = corners.reshape(-1, 3, 3)
+    normals = _unit(np.cross(tri[:, 1] - tri[:, 0], tri[:, 2] - tri[:, 0]))
+    turning = (np.abs(np.sum(normals * axis.mean(axis=1), axis=1)) < 0.5) & \
+        (np.abs(np.sum(normals * _unit(radial.mean(axis=1)), axis=1)) > math.sin(math.radians(flat_angle)))
+    return candidates[near & inside.reshape(-1, 3).all(axis=1) & turning]
 
 
 def _found_radius_along(strip, start, axis, along):
