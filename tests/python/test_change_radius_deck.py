@@ -145,18 +145,21 @@ def test_cli_rerounds_a_deck_by_extension(filleted_deck, tmp_path, capsys):
         cli.main(["reround", filleted_deck, str(tmp_path / "y.bdf"), "--seed", "1,2,3", "--radius", "8"])
 
 
-def test_quad_deck_rounded_by_meshround_then_changed(tmp_path):
-    """deck_files' quad box rounded at 5 mm by round_deck (a quad-dominant band), then its round changed to
-    8 mm by change_radius_deck: found 5 mm, within 0.01 r of OCCT's 8 mm fillet, the far quads kept."""
+@pytest.mark.parametrize("style", ["lsdyna_fixed", "nastran_small", "abaqus"])
+def test_quad_deck_rounded_by_meshround_then_changed(tmp_path, style):
+    """deck_files' quad box (LS-DYNA, Nastran, Abaqus) rounded at 5 mm by round_deck (a quad-dominant band),
+    then its round changed to 8 mm by change_radius_deck: found 5 mm, within 0.01 r of OCCT's 8 mm fillet,
+    the far quads kept."""
     xyz, quads, faces = deck_files.box_quads((60.0, 40.0, 30.0), 2.5)
     centroid = xyz[quads].mean(axis=1)
     near = np.flatnonzero(edge_distance(centroid) < 5.0)
     far = np.flatnonzero(faces == 4)
     edge = np.flatnonzero(edge_distance(xyz) < 1e-9)
-    path = deck_files.write_deck(str(tmp_path), "lsdyna_fixed", xyz, quads, faces, near, far, edge)
-    r5 = str(tmp_path / "r5.k")
+    path = deck_files.write_deck(str(tmp_path), style, xyz, quads, faces, near, far, edge)
+    ext = os.path.splitext(path)[1]
+    r5 = str(tmp_path / ("r5" + ext))
     MeshRound.round_deck(path, r5, [(37.0, 40.0, 30.0)], R0)
-    r8 = str(tmp_path / "r8.k")
+    r8 = str(tmp_path / ("r8" + ext))
     seed = (37.0, 35.0 + R0 * np.cos(0.7), 25.0 + R0 * np.sin(0.7))  # on the 5 mm round
     res = MeshRound.change_radius_deck(r5, r8, [seed], 8.0)
     assert abs(res.report["found_radius"][0] - R0) <= 0.01 * R0, res.report["strips"]
