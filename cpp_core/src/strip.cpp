@@ -506,7 +506,7 @@ void recognise_curved(const MeshTopology& mesh, Facets& fx, int f0, const std::v
     }
   }
   // The run of stations through the seed's whose corner line turns by kStationTurnDeg at most from one to
-  // the next; a station or two beyond it at an end (an end face's facets across a sliver) are dropped.
+  // the next; stations beyond it at an end (an end face's facets across a sliver) are dropped.
   {
     std::vector<double> turn(station.size(), 0);
     for (size_t i = 1; i < station.size(); ++i)
@@ -517,8 +517,17 @@ void recognise_curved(const MeshTopology& mesh, Facets& fx, int f0, const std::v
     size_t lo = seed_at, hi = seed_at;
     while (lo > 0 && turn[lo] <= kStationTurnDeg) --lo;
     while (hi + 1 < station.size() && turn[hi + 1] <= kStationTurnDeg) ++hi;
-    if (lo > 2 || station.size() - 1 - hi > 2) {
-      const size_t at = lo > 2 ? lo : hi + 1;
+    // Dropped at an end: stations within twice the round's width (corner to border) of the run's last
+    // one, the end face's (a mesher's slivers there); beyond, the corner line goes on around a corner.
+    auto beyond = [&](size_t from, size_t to, size_t end) {
+      const double width = (station[end].corner - mesh.point(station_vertex[end])).norm();
+      for (size_t j = from; j < to; ++j)
+        if ((station[j].corner - station[end].corner).norm() > 2 * width) return true;
+      return false;
+    };
+    const bool past_lo = beyond(0, lo, lo), past_hi = beyond(hi + 1, station.size(), hi);
+    if (past_lo || past_hi) {
+      const size_t at = past_lo ? lo : hi + 1;
       not_a_round("its corner line turns by " + format_number(turn[at]) + " deg at " + format_point(station[at].corner) +
                   " (a corner of its curved side, or a corner blend where rounds meet, as around a pocket's rim: not done yet)", where);
     }
