@@ -210,9 +210,9 @@ def s_plate(r0, bend=30.0, turn_deg=40.0):
 def test_round_with_a_side_curved_in_plan_found_and_sharpened():
     """A round whose wall side curves along it (an S of two 40 degree arcs of 30 mm, r0 = 3): recognised
     with a flat side and a curved one, its radius found within 1 %, sharpened (the corner line on the top's
-    plane), sound.  (A new radius on this mesh is refused today by the output check at the chain's ends,
-    where MeshPart left folded slivers on the seams of the fillet's end arcs: result_invalid, nothing
-    changed.)"""
+    plane), sound.  (A new radius on this plate is refused by round_edges' output check at the chain's end
+    faces -- result_invalid, nothing changed -- as round_edges refuses it on the sharp plate's own MeshPart
+    mesh: a round_edges limit at these ends, not the sharpening's.)"""
     solid, seed = s_plate(3.0)
     assert solid.isValid()
     mesh = MeshPart.meshFromShape(Shape=solid, MaxLength=0.4 * 3.0)
