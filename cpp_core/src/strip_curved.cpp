@@ -1,0 +1,277 @@
+// The strip recognition for a round with one side curved along it (strip.h, strip_facets.h).
+#include <Eigen/Dense>
+#include <Eigen/Eigenvalues>
+
+#include "strip_facets.h"
+
+namespace meshround::strip_detail {
+
+// A strip whose side B curves along the round (a wall curved in plan, vertical or drafted; side A flat):
+// side A is the largest plane beside the flood, side B the facets meeting A's normal at the angle most of
+// the area beyond the round has (the opening, one angle all along: a wall ruled across the round); the
+// strip is what turns between them. Each station (border B vertex; ordered along the border, nearest next)
+// gets its frame: plane A and side B's tangent plane there (normal to the axis and to side B's line in the
+// station's section, fitted to the side-B vertices nearly in it), their corner line and the ball's centre
+// direction; each strip vertex takes the frame of its nearest station, its corner point moved into its
+// own section. The corner line is the stations' corner points: the sharp edge rebuilt section by section,
+// exact where side B is ruled across the round but for taking a station's tangent plane half a border
+// spacing h away: within about (h/2)^2 / 2R, R side B's radius along the round. A closed loop (a round
+// all around a circular pocket) is refused (not done yet).
+constexpr double kStationTurnDeg = 15;  // largest turn of the corner line between two stations
+constexpr double kJoinDeg = 80;         // see recognise_curved's flood
+
+void recognise_curved(const MeshTopology& mesh, Facets& fx, int f0, const std::vector<int>& flood, const std::vector<int>& beside,
+                      const SharpenOptions& o, const Vec3& where, RoundStrip& strip, std::vector<std::pair<int, int>>& end_edges) {
+  const double fd2 = 2 * o.flat_deg;
+  // Side A: the largest group of coplanar candidates.
+  std::vector<std::pair<Vec3, double>> groups;  // (normal, area)
+  for (int f : beside) {
+    bool known = false;
+    for (auto& [n, a] : groups)
+      if (angle_deg(fx.normal(f), n) <= fd2) a += fx.area(f), known = true;
+    if (!known) groups.push_back({fx.normal(f), fx.area(f)});
+  }
+  if (groups.empty()) not_a_round("no flat face was found on either side", where);
+  const Vec3 nA = std::max_element(groups.begin(), groups.end(), [](auto& x, auto& y) { return x.second < y.second; })->first;
+  Vec3 sumA = Vec3::Zero();
+  for (int f : beside)
+    if (angle_deg(fx.normal(f), nA) <= fd2) sumA += fx.area(f) * fx.normal(f);
+  strip.normal[0] = sumA.normalized();
+  {  // sharper: the plane fitted to the group's vertices (a facet's normal carries its float32 rounding)
+    std::unordered_set<int> on;
+    for (int f : beside)
+      if (angle_deg(fx.normal(f), strip.normal[0]) <= fd2)
+        for (int k = 0; k < 3; ++k) on.insert(mesh.F(f, k));
+    Vec3 c = Vec3::Zero();
+    for (int v : on) c += mesh.point(v) / double(on.size());
+    Eigen::Matrix3d C = Eigen::Matrix3d::Zero();
+    for (int v : on) C += (mesh.point(v) - c) * (mesh.point(v) - c).transpose();
+    Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(C);
+    Vec3 fit = eig.eigenvectors().col(0).normalized();
+    if (fit.dot(strip.normal[0]) < 0) fit = -fit;
+    if (on.size() >= 4 && eig.eigenvalues()(1) > 0 && angle_deg(fit, strip.normal[0]) < fd2) strip.normal[0] = fit;
+    strip.offset[0] = strip.normal[0].dot(c);  // (through the plane's own vertices, not the border's: a
+                                               // sliver at an end may put a round's vertex on the border)
+  }
+  // The opening: the largest angle to side A that a tenth of the area of the fullest angle has, in bins
+  // of 2 flat_deg (side B's facets: one angle all along; the round's spread over the angles between).
+  std::unordered_map<int, double> bins;
+  for (const std::vector<int>* list : {&flood, &beside})
+    for (int f : *list) bins[int(std::floor(angle_deg(fx.normal(f), strip.normal[0]) / fd2))] += fx.area(f);
+  double fullest = 0;
+  for (const auto& [b, a] : bins)
+    if (b * fd2 > 4 * fd2) fullest = std::max(fullest, a);
+  int top_bin = -1;
+  for (const auto& [b, a] : bins)
+    if (b * fd2 > 4 * fd2 && a >= 0.1 * fullest && b > top_bin) top_bin = b;
+  if (top_bin < 0) not_a_round("no second side was found beside it", where);
+  double opening = 0, opening_area = 0;  // the area-weighted mean angle in that bin and its neighbours
+  for (const std::vector<int>* list : {&flood, &beside})
+    for (int f : *list) {
+      const double a = angle_deg(fx.normal(f), strip.normal[0]);
+      if (std::abs(a - (top_bin + 0.5) * fd2) <= 1.5 * fd2) opening += fx.area(f) * a, opening_area += fx.area(f);
+    }
+  opening /= opening_area;
+  if (opening < 4 * fd2 || opening > 180 - 4 * fd2) not_a_round("its sides do not meet at an angle (no sharp edge to rebuild)", where);
+  auto side_of = [&](int g) {
+    const double a = angle_deg(fx.normal(g), strip.normal[0]);
+    if (a < fd2) return 0;
+    if (a > opening - fd2) return 1;
+    return -1;
+  };
+  if (side_of(f0) >= 0) not_a_round("the seed's facet lies on a side beside a round, not on the round", where);
+  // The strip, its borders and ends (as flood_strip, the sides told by their angle to side A).
+  std::vector<std::pair<int, int>> border_b;  // (border B vertex, the side-B facet across the border there)
+  std::vector<std::pair<int, int>> border_edges;  // (strip facet, edge) of each border B edge
+  flood_from(mesh, fx, f0, o, strip, [&](int f, int k, int g) {
+    const int a = mesh.F(f, k), b = mesh.F(f, (k + 1) % 3);
+    const int side = g >= 0 ? side_of(g) : -1;
+    // (a facet turning like neither side joins while it turns by less than kJoinDeg: a mesher's folded
+    // sliver on a seam between two round faces turns by a little over strip_turn_deg)
+    if (g >= 0 && side < 0 && angle_deg(fx.normal(f), fx.normal(g)) < std::max(o.strip_turn_deg, kJoinDeg)) return true;
+    if (side >= 0 && fx.smooth(f, g)) {
+      for (int v : {a, b}) strip.role[v] = side ? StripRole::BorderB : StripRole::BorderA;
+      if (side) border_b.push_back({a, g}), border_b.push_back({b, g}), border_edges.push_back({f, k});
+    } else {
+      end_edges.push_back({f, k});
+    }
+    return false;
+  });
+  if (end_edges.empty()) not_a_round("it runs all around a closed loop (a circular pocket's or boss's rim: not done yet)", where);
+  // Plane A's border.
+  int n = 0;
+  for (const auto& [v, role] : strip.role)
+    if (role == StripRole::BorderA) ++n;
+  if (n < 2) not_a_round("its flat side's border has fewer than two vertices", where);
+  strip.border_count[0] = n;
+  // Side B's tangent plane at each border B vertex: its normal from the side-B facets around it that turn
+  // with the one across the border there (not an end face's), weighted by their angles at the vertex.
+  std::unordered_map<int, Vec3> anchor;
+  for (const auto& [v, g] : border_b) anchor.emplace(v, fx.normal(g));
+  if (anchor.size() < 2) not_a_round("its curved side's border has fewer than two vertices", where);
+  strip.border_count[1] = int(anchor.size());
+  std::vector<StripFrame> station;
+  std::vector<int> station_vertex;  // the border B vertex of each
+  for (const auto& [b, an] : anchor) {
+    Vec3 nB = Vec3::Zero();
+    for (const int* g = mesh.facets_begin(b); g != mesh.facets_end(b); ++g) {
+      if (strip.facet_set.count(*g) || side_of(*g) != 1 || angle_deg(fx.normal(*g), an) > kStationTurnDeg) continue;
+      int k = 0;
+      while (mesh.F(*g, k) != b) ++k;
+      const Vec3 u = mesh.point(mesh.F(*g, (k + 1) % 3)) - mesh.point(b), w = mesh.point(mesh.F(*g, (k + 2) % 3)) - mesh.point(b);
+      nB += std::atan2(u.cross(w).norm(), u.dot(w)) * fx.normal(*g);  // weighted by the facet's angle at b
+    }
+    if (nB.norm() < 1e-12) continue;
+    nB.normalize();
+    // Sharper (the facets of a tessellated curved wall tilt by their chords): side B's line in b's own
+    // section, through b and the side-B vertices within three rings of it that lie nearly in that section
+    // (|along| < 0.35 of the ring's mean edge), projected into it; nB is normal to it and to the axis.
+    {
+      const Vec3 t = strip.normal[0].cross(nB).normalized();
+      std::unordered_set<int> ring{b};
+      for (int pass = 0; pass < 3; ++pass) {
+        std::vector<int> grow(ring.begin(), ring.end());
+        for (int v : grow)
+          for (const int* g = mesh.facets_begin(v); g != mesh.facets_end(v); ++g)
+            if (!strip.facet_set.count(*g) && side_of(*g) == 1 && angle_deg(fx.normal(*g), nB) <= kStationTurnDeg)
+              for (int k = 0; k < 3; ++k) ring.insert(mesh.F(*g, k));
+      }
+      double h = 0;
+      int nh = 0;
+      for (const int* g = mesh.facets_begin(b); g != mesh.facets_end(b); ++g)
+        for (int k = 0; k < 3; ++k) h += (mesh.corner(*g, k) - mesh.corner(*g, (k + 1) % 3)).norm(), ++nh;
+      h /= std::max(nh, 1);
+      Eigen::Matrix3d C = Eigen::Matrix3d::Zero();
+      int used = 0;
+      for (int v : ring) {
+        const Vec3 d = mesh.point(v) - mesh.point(b);
+        if (v == b || std::abs(t.dot(d)) > 0.35 * h || d.norm() < 0.2 * h) continue;
+        const Vec3 q = d - t * t.dot(d);
+        C += q * q.transpose() / q.squaredNorm(), ++used;
+      }
+      if (used >= 1) {
+        Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(C);
+        const Vec3 down = eig.eigenvectors().col(2).normalized();
+        Vec3 fit = down.cross(t).normalized();
+        if (fit.dot(nB) < 0) fit = -fit;
+        if (angle_deg(fit, nB) < 5) nB = fit;
+      }
+    }
+    StripFrame F;
+    F.normal[0] = strip.normal[0], F.offset[0] = strip.offset[0];
+    F.normal[1] = nB, F.offset[1] = F.normal[1].dot(mesh.point(b));
+    F.axis = F.normal[0].cross(F.normal[1]);
+    if (F.axis.norm() < 1e-6) not_a_round("its two sides are parallel at " + format_point(mesh.point(b)), where);
+    F.axis.normalize();
+    Eigen::Matrix3d M;
+    M.row(0) = F.normal[0].transpose(), M.row(1) = F.normal[1].transpose(), M.row(2) = F.axis.transpose();
+    F.corner = M.fullPivLu().solve(Eigen::Vector3d(F.offset[0], F.offset[1], F.axis.dot(mesh.point(b))));
+    station.push_back(F), station_vertex.push_back(b);
+  }
+  // In order along the corner line: from the station farthest from their middle, each next the nearest.
+  {
+    Vec3 middle = Vec3::Zero();
+    for (const StripFrame& F : station) middle += F.corner / double(station.size());
+    size_t first = 0;
+    for (size_t i = 1; i < station.size(); ++i)
+      if ((station[i].corner - middle).squaredNorm() > (station[first].corner - middle).squaredNorm()) first = i;
+    std::swap(station[0], station[first]), std::swap(station_vertex[0], station_vertex[first]);
+    for (size_t i = 1; i < station.size(); ++i) {
+      size_t best = i;
+      for (size_t j = i + 1; j < station.size(); ++j)
+        if ((station[j].corner - station[i - 1].corner).squaredNorm() < (station[best].corner - station[i - 1].corner).squaredNorm()) best = j;
+      std::swap(station[i], station[best]), std::swap(station_vertex[i], station_vertex[best]);
+    }
+  }
+  // The run of stations through the seed's whose corner line turns by kStationTurnDeg at most from one to
+  // the next; stations beyond it at an end (an end face's facets across a sliver) are dropped.
+  {
+    std::vector<double> turn(station.size(), 0);
+    for (size_t i = 1; i < station.size(); ++i)
+      turn[i] = std::acos(std::min(1.0, std::abs(station[i].axis.dot(station[i - 1].axis)))) / kDeg;
+    size_t seed_at = 0;
+    for (size_t i = 1; i < station.size(); ++i)
+      if ((station[i].corner - where).squaredNorm() < (station[seed_at].corner - where).squaredNorm()) seed_at = i;
+    size_t lo = seed_at, hi = seed_at;
+    while (lo > 0 && turn[lo] <= kStationTurnDeg) --lo;
+    while (hi + 1 < station.size() && turn[hi + 1] <= kStationTurnDeg) ++hi;
+    // Dropped at an end: stations within twice the round's width (corner to border) of the run's last
+    // one, the end face's (a mesher's slivers there); beyond, the corner line goes on around a corner.
+    auto beyond = [&](size_t from, size_t to, size_t end) {
+      const double width = (station[end].corner - mesh.point(station_vertex[end])).norm();
+      for (size_t j = from; j < to; ++j)
+        if ((station[j].corner - station[end].corner).norm() > 2 * width) return true;
+      return false;
+    };
+    const bool past_lo = beyond(0, lo, lo), past_hi = beyond(hi + 1, station.size(), hi);
+    if (past_lo || past_hi) {
+      const size_t at = past_lo ? lo : hi + 1;
+      not_a_round("its corner line turns by " + format_number(turn[at]) + " deg at " + format_point(station[at].corner) +
+                  " (a corner of its curved side, or a corner blend where rounds meet, as around a pocket's rim: not done yet)", where);
+    }
+    station = std::vector<StripFrame>(station.begin() + long(lo), station.begin() + long(hi) + 1);
+    // The border edges at a dropped station are the strip's end there (across them: an end face's
+    // facets, reached through a mesher's sliver); their vertices are the strip's.
+    const std::unordered_set<int> kept(station_vertex.begin() + long(lo), station_vertex.begin() + long(hi) + 1);
+    for (const auto& [f, k] : border_edges) {
+      const int a = mesh.F(f, k), b = mesh.F(f, (k + 1) % 3);
+      if (kept.count(a) && kept.count(b)) continue;
+      end_edges.push_back({f, k});
+      for (int v : {a, b})
+        if (!kept.count(v)) strip.role[v] = StripRole::Inner;
+    }
+    strip.border_count[1] = int(kept.size());
+    if (station.size() < 2) not_a_round("its curved side's border has fewer than two stations", where);
+  }
+  for (size_t i = 0; i < station.size(); ++i) {
+    StripFrame& F = station[i];
+    const Vec3 along = i > 0 ? station[i - 1].axis : Vec3(station[std::min<size_t>(1, station.size() - 1)].corner - F.corner);
+    if (F.axis.dot(along) < 0) F.axis = -F.axis;
+  }
+  // The strip vertices' stations (nearest corner point), the side of each plane the round lies on.
+  std::unordered_map<int, size_t> at;
+  for (const auto& [v, role] : strip.role) {
+    size_t best = 0;
+    for (size_t i = 1; i < station.size(); ++i)
+      if ((station[i].corner - mesh.point(v)).squaredNorm() < (station[best].corner - mesh.point(v)).squaredNorm()) best = i;
+    at[v] = best;
+  }
+  const double slack = 1e-6 * (station.front().corner - station.back().corner).norm() + 1e-9;
+  for (int side = 0; side < 2; ++side) {
+    double total = 0;
+    for (const auto& [v, role] : strip.role)
+      if (role == StripRole::Inner || role == StripRole::End)
+        total += station[at[v]].normal[side].dot(mesh.point(v)) - station[at[v]].offset[side];
+    if (std::abs(total) <= slack) not_a_round("it has no vertex off its sides (one element across: the radius is not defined)", where);
+    strip.side[side] = total > 0 ? 1.0 : -1.0;
+  }
+  double s = 0;
+  for (size_t i = 0; i < station.size(); ++i) {
+    StripFrame& F = station[i];
+    F.side[0] = strip.side[0], F.side[1] = strip.side[1];
+    Eigen::Matrix3d M;
+    M.row(0) = F.normal[0].transpose(), M.row(1) = F.normal[1].transpose(), M.row(2) = F.axis.transpose();
+    F.centre_dir = M.fullPivLu().solve(Eigen::Vector3d(F.side[0], F.side[1], 0));
+    if (i > 0) s += (F.corner - station[i - 1].corner).norm();
+    strip.line.push_back(F.corner), strip.line_s.push_back(s);
+  }
+  // A vertex's frame: its nearest station's, the corner point moved into the vertex's own section.
+  for (const auto& [v, role] : strip.role) {
+    const Vec3 p = mesh.point(v);
+    StripFrame F = station[at[v]];
+    F.corner += F.axis * F.axis.dot(p - F.corner);  // its own section's corner point
+    strip.frames.emplace(v, F);
+  }
+  strip.curved = true;
+  // The strip's own frame: the seed's station's; the line's frames; the ends' (the first and last station).
+  size_t seed_at = 0;
+  for (size_t i = 1; i < station.size(); ++i)
+    if ((station[i].corner - where).squaredNorm() < (station[seed_at].corner - where).squaredNorm()) seed_at = i;
+  static_cast<StripFrame&>(strip) = station[seed_at];
+  strip.stations = std::move(station);
+  strip.end_frame[0] = strip.stations.front(), strip.end_frame[1] = strip.stations.back();
+  strip.s_lo = INFINITY, strip.s_hi = -INFINITY;
+  for (const auto& [v, role] : strip.role) strip.s_lo = std::min(strip.s_lo, strip.param(mesh.point(v))), strip.s_hi = std::max(strip.s_hi, strip.param(mesh.point(v)));
+}
+
+}  // namespace meshround::strip_detail

@@ -1,0 +1,90 @@
+// Private to the strip recognition (strip.cpp, strip_curved.cpp): the facets' normals and neighbours,
+// the flood of a strip's facets, and the refusal they share.
+#pragma once
+#include <algorithm>
+#include <cmath>
+#include <deque>
+#include <string>
+#include <unordered_map>
+#include <utility>
+#include <vector>
+
+#include "meshround/mesh_edit.h"
+#include "strip.h"
+
+namespace meshround::strip_detail {
+
+constexpr double kDeg = M_PI / 180.0;
+
+[[noreturn]] inline void not_a_round(const std::string& why, const Vec3& where) {
+  throw RoundingError(ErrorCode::NotARound, "the strip picked at " + format_point(where) + " is not a round between two flat sides: " + why);
+}
+
+inline double angle_deg(const Vec3& a, const Vec3& b) { return std::acos(std::clamp(a.dot(b), -1.0, 1.0)) / kDeg; }
+
+// The facets' normals and smooth neighbours, looked up once per facet.
+class Facets {
+ public:
+  Facets(const MeshTopology& mesh, const SharpenOptions& o) : mesh_(mesh), o_(o) {}
+  const Vec3& normal(int f) {
+    auto it = normal_.find(f);
+    if (it == normal_.end()) it = normal_.emplace(f, mesh_.facet_normal(f)).first;
+    return it->second;
+  }
+  // The neighbour across edge k of f (-1: boundary), refusing a non-manifold or flipped neighbour.
+  int across(int f, int k) {
+    const int a = mesh_.F(f, k), b = mesh_.F(f, (k + 1) % 3);
+    int pair[2];
+    const int count = mesh_.edge_facet_pair(a, b, pair);
+    if (count == 1) return -1;
+    const Vec3 mid = 0.5 * (mesh_.point(a) + mesh_.point(b));
+    if (count > 2) throw RoundingError(ErrorCode::NonManifoldInput, "the edge at " + format_point(mid) + " on the strip is non-manifold");
+    const int g = pair[0] == f ? pair[1] : pair[0];
+    if (mesh_.edge_direction(f, a, b) == mesh_.edge_direction(g, a, b))
+      throw RoundingError(ErrorCode::NonManifoldInput, "the facets at " + format_point(mid) + " are oriented against each other (a flipped facet)");
+    return g;
+  }
+  bool smooth(int f, int g) { return angle_deg(normal(f), normal(g)) < o_.strip_turn_deg; }
+  // Flat: every smooth neighbour coplanar with it.
+  bool flat(int f) {
+    for (int k = 0; k < 3; ++k) {
+      const int g = across(f, k);
+      if (g >= 0 && smooth(f, g) && angle_deg(normal(f), normal(g)) >= o_.flat_deg) return false;
+    }
+    return true;
+  }
+  Vec3 centroid(int f) const { return (mesh_.corner(f, 0) + mesh_.corner(f, 1) + mesh_.corner(f, 2)) / 3; }
+  double area(int f) const { return 0.5 * (mesh_.corner(f, 1) - mesh_.corner(f, 0)).cross(mesh_.corner(f, 2) - mesh_.corner(f, 0)).norm(); }
+
+ private:
+  const MeshTopology& mesh_;
+  const SharpenOptions& o_;
+  std::unordered_map<int, Vec3> normal_;
+};
+
+// The breadth-first flood of a strip's facets from f0 (each one's vertices Inner until told otherwise):
+// visit(f, k, g) decides for edge k of strip facet f, whose neighbour g (-1: the mesh boundary) is not in
+// the strip yet, whether g joins it (true), else records what the edge is.
+template <class Visit>
+void flood_from(const MeshTopology& mesh, Facets& fx, int f0, const SharpenOptions& o, RoundStrip& strip, Visit visit) {
+  strip.facet_set.insert(f0);
+  std::deque<int> queue{f0};
+  while (!queue.empty()) {
+    const int f = queue.front();
+    queue.pop_front();
+    strip.facets.push_back(f);
+    if (long(strip.facets.size()) > o.max_new_facets) check_work_budget(double(strip.facets.size()), o.max_new_facets, "strip recognition");
+    for (int k = 0; k < 3; ++k) {
+      for (int v : {mesh.F(f, k), mesh.F(f, (k + 1) % 3)}) strip.role.emplace(v, StripRole::Inner);
+      const int g = fx.across(f, k);
+      if (g >= 0 && strip.facet_set.count(g)) continue;
+      if (visit(f, k, g)) strip.facet_set.insert(g), queue.push_back(g);
+    }
+  }
+}
+
+// A strip whose side B curves along the round (strip_curved.cpp).
+void recognise_curved(const MeshTopology& mesh, Facets& fx, int f0, const std::vector<int>& flood, const std::vector<int>& beside,
+                      const SharpenOptions& o, const Vec3& where, RoundStrip& strip, std::vector<std::pair<int, int>>& end_edges);
+
+}  // namespace meshround::strip_detail
