@@ -102,6 +102,9 @@ struct SplitMesh {
 
 constexpr double kSnapKeepsAngle = 10 * M_PI / 180;  // a vertex snapped onto the plane keeps its facets' angles above this
 constexpr double kSnapShare = 0.25;  // x its shortest edge: a vertex that near the plane moves onto it
+constexpr double kSlideOffPlane = 1e-4;   // x the chain edge's length: how far a vertex slid along the chain may leave
+                                          // its facets' planes
+constexpr double kSlideKeepsAngle = 0.5;  // x min(kSnapKeepsAngle, its own): the smallest angle a slid vertex's facets keep
 constexpr double kSideShare = 0.01;  // x a side's length: a corner that near a flat side (not near its ends) splits
                                      // that side (the sliver it would leave has an angle under about 1 degree)
 
@@ -179,6 +182,28 @@ int insert_corner(SplitMesh& m, const MeshTopology& mesh, std::vector<int>& face
   return x;
 }
 
+// Whether input vertex v may move to `to`: no facet around it (its own, as split so far, or a piece made
+// with it) turns over, gets a smallest angle under `angle_share` x min(kSnapKeepsAngle, its own), or leaves
+// its plane by more than `off_plane`.
+bool move_keeps_shape(const SplitMesh& m, const MeshTopology& mesh, int v, const Vec3& to, double angle_share, double off_plane) {
+  std::vector<int> around;
+  for (const int* g = mesh.facets_begin(v); g != mesh.facets_end(v); ++g) m.live(*g, around);
+  for (size_t t = size_t(mesh.num_facets()); t < m.tris.size(); ++t)  // (pieces not of v's own facets)
+    if (!m.gone[t] && std::find(m.tris[t].begin(), m.tris[t].end(), v) != m.tris[t].end()) around.push_back(int(t));
+  for (int t : around) {
+    const auto& g = m.tris[size_t(t)];
+    if (std::find(g.begin(), g.end(), v) == g.end()) continue;
+    Vec3 c[3], c0[3];
+    for (int k = 0; k < 3; ++k) c0[k] = m.points[g[k]], c[k] = g[k] == v ? to : c0[k];
+    const Vec3 n_before = (c0[1] - c0[0]).cross(c0[2] - c0[0]);
+    if ((c[1] - c[0]).cross(c[2] - c[0]).dot(n_before) <= 0 ||
+        smallest_angle(c[0], c[1], c[2]) < angle_share * std::min(kSnapKeepsAngle, smallest_angle(c0[0], c0[1], c0[2])) ||
+        std::abs(n_before.normalized().dot(to - m.points[v])) > off_plane)
+      return false;
+  }
+  return true;
+}
+
 // Vertices a hair off the plane, in a flat neighbourhood near the segment P -> Q: onto the plane (before
 // the corner is put in, so that it lands in a facet of the final shape).
 void snap_onto_plane(SplitMesh& m, const MeshTopology& mesh, const std::vector<int>& facets, const EndCut& cut, int p,
@@ -206,24 +231,7 @@ void snap_onto_plane(SplitMesh& m, const MeshTopology& mesh, const std::vector<i
       // round's end plane went 5e-4 past the side of a facet an earlier round's trim had made, and the
       // facet folded over it).
       const Vec3 to = m.points[v] - dir * (d / dir.dot(cut.normal));
-      std::vector<int> around;
-      for (const int* g = mesh.facets_begin(v); g != mesh.facets_end(v); ++g) m.live(*g, around);
-      for (size_t t = size_t(mesh.num_facets()); t < m.tris.size(); ++t)  // (pieces not of v's own facets)
-        if (!m.gone[t] && std::find(m.tris[t].begin(), m.tris[t].end(), v) != m.tris[t].end()) around.push_back(int(t));
-      bool keeps_shape = true;
-      for (int t : around) {
-        const auto& g = m.tris[size_t(t)];
-        if (std::find(g.begin(), g.end(), v) == g.end()) continue;
-        Vec3 c[3], c0[3];
-        for (int k = 0; k < 3; ++k) c0[k] = m.points[g[k]], c[k] = g[k] == v ? to : c0[k];
-        const Vec3 n_before = (c0[1] - c0[0]).cross(c0[2] - c0[0]);
-        if ((c[1] - c[0]).cross(c[2] - c[0]).dot(n_before) <= 0 ||
-            smallest_angle(c[0], c[1], c[2]) < std::min(kSnapKeepsAngle, smallest_angle(c0[0], c0[1], c0[2]))) {
-          keeps_shape = false;
-          break;
-        }
-      }
-      if (keeps_shape) m.points[v] = to;
+      if (move_keeps_shape(m, mesh, v, to, 1.0, INFINITY)) m.points[v] = to;
     }
   }
 }
@@ -280,12 +288,22 @@ void split_crossed(SplitMesh& m, std::vector<int>& facets, const EndCut& cut, in
 
 // The chain edge seg.edge split at seg.start on both sides (or the vertex already there); the pieces of
 // the split facets join `facets`. Returns the vertex.
-int split_chain_edge(SplitMesh& m, std::unordered_map<std::uint64_t, std::vector<int>>& on_chain, const EndSegment& seg, double slack,
-                     std::vector<int>& facets) {
+int split_chain_edge(SplitMesh& m, const MeshTopology& mesh, std::unordered_map<std::uint64_t, std::vector<int>>& on_chain,
+                     const EndSegment& seg, double slack, std::vector<int>& facets) {
   std::vector<int>& on = on_chain[edge_key(seg.edge[0], seg.edge[1])];
   if (on.empty()) on = {seg.edge[0], seg.edge[1]};
   for (int v : on)
     if ((m.points[v] - seg.start).norm() <= slack) return v;
+  // A chain vertex within kSideShare of the edge's length of the point slides along the chain onto it, where
+  // its facets keep their planes (a straight chain between flat faces) and shapes: a split there would leave
+  // a sliver (a box corner's sphere plane at r = 19.999 crossed a 2 mm edge 0.001 mm from its vertex).
+  const double length = (m.points[seg.edge[1]] - m.points[seg.edge[0]]).norm();
+  for (int v : seg.edge)
+    if (v < mesh.num_vertices() && v != seg.end_vertex && (m.points[v] - seg.start).norm() <= kSideShare * length &&
+        move_keeps_shape(m, mesh, v, seg.start, kSlideKeepsAngle, kSlideOffPlane * length)) {
+      m.points[v] = seg.start;
+      return v;
+    }
   const int x = m.add(seg.start);
   auto holds = [&](int a, int b) {  // a piece of the chain edge with seg.start inside it
     if (std::find(on.begin(), on.end(), a) == on.end() || std::find(on.begin(), on.end(), b) == on.end()) return false;
@@ -389,7 +407,7 @@ bool split_along_end_segments(const MeshTopology& mesh, const std::vector<EndSeg
     std::vector<int> facets;  // this side's facets, as earlier segments left them
     for (int f : seg.facets) m.live(f, facets);
     int p = seg.end_vertex;
-    if (seg.edge[0] >= 0) p = split_chain_edge(m, on_chain, seg, slack, facets);
+    if (seg.edge[0] >= 0) p = split_chain_edge(m, mesh, on_chain, seg, slack, facets);
     snap_onto_plane(m, mesh, facets, seg.cut, p, m.points[p], seg.corner, slack);
     const int q = insert_corner(m, mesh, facets, seg.corner, slack);
     if (q < 0 || q == p) continue;

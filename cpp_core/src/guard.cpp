@@ -111,10 +111,24 @@ bool coplanar_overlap(const Triangle& s, const Triangle& t) {
 
 // Facets sharing a vertex or an edge are tested too: an edge through a shared vertex lies on the other
 // facet's plane there, so it cannot pierce; what crosses is an opposite edge, or a coplanar fold-over.
+// Two facets with a vertex in common that lie within a thousandth of the smaller one's size of one plane are
+// tested as coplanar: a facet folded back onto its neighbour by a hair (normals opposite, 0.005 mm apart over
+// 25 mm) crosses it at too shallow an angle for the piercing test's slack to see. (Of the smaller one: a
+// facet a thousandth of its neighbour's size lies within a thousandth of that of any plane through their
+// common vertex.)
+constexpr double kFoldShare = 1e-3;
+
 bool triangles_cross(const Triangle& s, const Triangle& t, double slack) {
+  bool shared = false;
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) shared |= s.p[i] == t.p[j];
+  double size[2] = {0, 0};
+  for (int k = 0; k < 3; ++k)
+    size[0] = std::max(size[0], (s.p[(k + 1) % 3] - s.p[k]).norm()), size[1] = std::max(size[1], (t.p[(k + 1) % 3] - t.p[k]).norm());
+  const double flat = shared ? std::max(slack, kFoldShare * std::min(size[0], size[1])) : slack;
   bool coplanar = true;
   const double tn = t.normal.norm();
-  for (const Vec3& v : s.p) coplanar &= std::abs(t.normal.dot(v - t.p[0])) / tn <= slack;
+  for (const Vec3& v : s.p) coplanar &= std::abs(t.normal.dot(v - t.p[0])) / tn <= flat;
   if (coplanar) return coplanar_overlap(s, t);
   for (int k = 0; k < 3; ++k)
     if (segment_pierces(s.p[k], s.p[(k + 1) % 3], t, slack) || segment_pierces(t.p[k], t.p[(k + 1) % 3], s, slack))
@@ -324,8 +338,11 @@ void check_result(const MeshEdit& edit, const SharpChain& chain, double reach, d
 
   auto check_shape = [&](const Facet& f) {
     const Vec3 a = edit.point(f[0]), b = edit.point(f[1]), c = edit.point(f[2]);
-    if (f[0] == f[1] || f[1] == f[2] || f[2] == f[0] || smallest_angle(a, b, c) * 180 / M_PI < kDegenerateDeg)
+    if (f[0] == f[1] || f[1] == f[2] || f[2] == f[0] || smallest_angle(a, b, c) * 180 / M_PI < kDegenerateDeg) {
+      if (std::getenv("MESHROUND_DEBUG"))  // the facet, for whoever traces the cause
+        std::fprintf(stderr, "guard: a degenerate facet (%.6f %.6f %.6f) (%.6f %.6f %.6f) (%.6f %.6f %.6f)\n", a.x(), a.y(), a.z(), b.x(), b.y(), b.z(), c.x(), c.y(), c.z());
       refuse("a degenerate facet (no area)", (a + b + c) / 3);
+    }
   };
   for (const Facet& f : edit.added) check_shape(f);
   for (const Facet& f : kept)
