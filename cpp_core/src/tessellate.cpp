@@ -1,5 +1,8 @@
+// The tessellation pass (tessellate.h) and its sub-passes (tessellate_rows.h): the round's rows placed on the
+// surface, zipped into facets and refined until they keep the tolerance; the band controls' rules.
 #include "meshround/tessellate.h"
 #include "meshround/cancel.h"
+#include "tessellate_rows.h"
 
 #include <algorithm>
 #include <cmath>
@@ -11,12 +14,6 @@
 
 namespace meshround {
 namespace {
-
-struct RowPoint {
-  int id;    // MeshEdit id for trim rows; index into `inner` (negative, -1 - i) for inner rows
-  double u;  // unwrapped along the strip
-  double v;
-};
 
 // v of the point at `fraction` of the profile's angle, on the profile at u (angle measured at the centre).
 double v_at_angle_fraction(const RoundingSurface& s, const ProfileStation& st, double fraction) {
@@ -65,26 +62,6 @@ auto interpolate_at(const std::vector<Item>& items, double u, Key key, Value val
   return decltype(value(a))((1 - t) * value(a) + t * value(b));
 }
 
-// Offsets of the trim points from the surface's edges, interpolated along u and faded across v.
-class EdgeOffsets {
- public:
-  EdgeOffsets(const RoundingSurface& surface, const std::vector<RowPoint>& first, const std::vector<RowPoint>& last,
-              const MeshEdit& edit) {
-    for (int side = 0; side < 2; ++side)
-      for (const RowPoint& p : side ? last : first)
-        rows_[side].push_back({p.u, edit.point(p.id) - surface.value(p.u, side)});
-  }
-  // The offset at (u, v): full at the trim lines, none from the middle of the profile on.
-  Vec3 at(double u, double v) const { return fade(v) * along(0, u) + fade(1 - v) * along(1, u); }
-
- private:
-  static double fade(double v) { return v >= 0.5 ? 0.0 : (1 - 2 * v) * (1 - 2 * v); }
-  Vec3 along(int side, double u) const {  // rows are sorted by (unwrapped) u
-    return interpolate_at(rows_[side], u, [](const auto& x) { return x.first; }, [](const auto& x) -> Vec3 { return x.second; });
-  }
-  std::vector<std::pair<double, Vec3>> rows_[2];
-};
-
 }  // namespace
 
 BandControls BandControls::of(const RoundOptions& o) {
@@ -120,112 +97,81 @@ double profile_step(const RoundingSurface& surface, const std::vector<ProfileSta
                         [&](const ProfileStation& st) { return st.radius * st.angle() / segments; });
 }
 
-RoundMeshStats mesh_rounding_surface(const RoundingSurface& surface, const std::vector<ProfileStation>& stations,
-                                     const TrimLines& trim, double tolerance, const BandControls& controls, MeshEdit& edit,
-                                     const SharedEnds& shared) {
-  const int nv = profile_segments(stations, tolerance, controls);
+
+Vec3 EdgeOffsets::along(int side, double u) const {
+  return interpolate_at(rows_[side], u, [](const auto& x) { return x.first; }, [](const auto& x) -> Vec3 { return x.second; });
+}
+
+RowTessellation::RowTessellation(const RoundingSurface& surface, const std::vector<ProfileStation>& stations, double tolerance,
+                                 const BandControls& controls, MeshEdit& edit, const SharedEnds& shared)
+    : surface(surface), stations(stations), tolerance(tolerance), controls(controls), edit(edit), shared(shared),
+      debug(getenv("MESHROUND_DEBUG") != nullptr), period(surface.u_last - surface.u_first) {}
+
+void RowTessellation::place_levels() {
+  nv = profile_segments(stations, tolerance, controls);
   // (A capped end's profile is moved onto its end face: the surface there is not the ball's section.)
-  const ProfileStation* widest = nullptr;
   for (const ProfileStation& st : stations)
     if (!st.cut.active && (!widest || st.angle() > widest->angle())) widest = &st;
-  std::vector<double> levels(nv + 1);
+  levels.resize(nv + 1);
   for (int j = 0; j <= nv; ++j) levels[j] = j == 0 ? 0.0 : j == nv ? 1.0 : v_at_angle_fraction(surface, *widest, double(j) / nv);
-  // Steps along the round follow the local step across it (BandControls): facets keep their shape where a
-  // variable radius shrinks.
-  auto h_min = [&](double u) { return controls.shortest_along(profile_step(surface, stations, nv, u)); };
-  auto h_max = [&](double u) { return controls.longest_along(profile_step(surface, stations, nv, u)); };
-  const double period = surface.u_last - surface.u_first;
+}
 
+void RowTessellation::read_trim_lines(const TrimLines& trim) {
   // Trim rows, unwrapped and closed on themselves for a loop.
-  std::vector<RowPoint> first_row, last_row;
   for (int side = 0; side < 2; ++side) {
-    auto& row = side == 0 ? first_row : last_row;
+    auto& row = trim_row[side];
     for (const TrimPoint& tp : trim.line[side]) row.push_back({tp.vertex, tp.u, double(side)});
     if (row.size() < 2) throw RoundingError(ErrorCode::SurfaceFailed, "the trim line on side " + std::string(side ? "B" : "A") + " is empty");
     if (surface.closed) row.push_back({row.front().id, row.front().u + period, double(side)});
   }
-
   // Where the base mesh leaves the lofted edge between two profiles (a coarse mesh's creases and tilted
   // facets), the trim points lie off the surface's edge. The inner rows follow them: each is moved by the
   // trim lines' offsets from the edge, fading out towards the middle of the profile, so that rows never
   // cross near a trim line. Facets are measured against this target, the report against the surface.
-  const EdgeOffsets offsets(surface, first_row, last_row, edit);
-  const bool debug = getenv("MESHROUND_DEBUG") != nullptr;
+  offsets = EdgeOffsets(surface, trim_row[0], trim_row[1], edit);
   if (debug)
     for (int side = 0; side < 2; ++side) {
       fprintf(stderr, "row %d:", side);
-      for (const RowPoint& p : side ? last_row : first_row) fprintf(stderr, " %d@%.4f", p.id, p.u);
+      for (const RowPoint& p : trim_row[side]) fprintf(stderr, " %d@%.4f", p.id, p.u);
       fprintf(stderr, "\n");
     }
+}
+
+// A row's samples from sorted u values: u_lo, those at least scale x h_min from the previous one (and
+// from u_hi), u_hi; then gaps longer than scale x h_max split evenly.
+std::vector<double> RowTessellation::row_samples(const std::vector<double>& sorted, double scale) const {
+  std::vector<double> thinned{u_lo};
+  for (double u : sorted)
+    if (u - thinned.back() >= scale * h_min(u) && u_hi - u >= scale * h_min(u)) thinned.push_back(u);
+  thinned.push_back(u_hi);
+  std::vector<double> out{thinned.front()};
+  for (size_t i = 1; i < thinned.size(); ++i) {
+    const double a = thinned[i - 1], b = thinned[i];
+    const int n = std::max(1, int(std::ceil((b - a) / (scale * std::min(h_max(a), h_max(b))))));
+    for (int k = 1; k <= n; ++k) out.push_back(a + (b - a) * k / n);
+  }
+  return out;
+}
+
+void RowTessellation::sample_inner_rows() {
   // u samples of the inner rows: both trim lines merged, thinned, gaps filled.
-  std::vector<double> us;
-  for (const auto* row : {&first_row, &last_row})
-    for (const RowPoint& p : *row) us.push_back(p.u);
+  for (const auto& row : trim_row)
+    for (const RowPoint& p : row) us.push_back(p.u);
   std::sort(us.begin(), us.end());
   // A loop's inner rows span exactly one period from the first sample (their last point is their first).
-  const double u_lo = us.front(), u_hi = surface.closed ? u_lo + period : us.back();
-  // A row's samples from sorted u values: u_lo, those at least scale x h_min from the previous one (and
-  // from u_hi), u_hi; then gaps longer than scale x h_max split evenly.
-  auto row_samples = [&](const std::vector<double>& sorted, double scale) {
-    std::vector<double> thinned{u_lo};
-    for (double u : sorted)
-      if (u - thinned.back() >= scale * h_min(u) && u_hi - u >= scale * h_min(u)) thinned.push_back(u);
-    thinned.push_back(u_hi);
-    std::vector<double> out{thinned.front()};
-    for (size_t i = 1; i < thinned.size(); ++i) {
-      const double a = thinned[i - 1], b = thinned[i];
-      const int n = std::max(1, int(std::ceil((b - a) / (scale * std::min(h_max(a), h_max(b))))));
-      for (int k = 1; k <= n; ++k) out.push_back(a + (b - a) * k / n);
-    }
-    return out;
-  };
+  u_lo = us.front(), u_hi = surface.closed ? u_lo + period : us.back();
   // With an element length the inner rows are evenly spaced at it (the trim lines' points do not set them).
-  std::vector<double> U = row_samples(controls.element_length > 0 ? std::vector<double>{} : us, 1.0);
-  // A carried end's straight piece (loft_profiles) is as long on each row as that row's point moves to the
-  // end face: from nothing beside a contact that meets the face where the balls stop, to the setback. Each
-  // inner row spaces its own points there, as the step beyond; a row whose piece is shorter than half a step
-  // keeps only its end point on the face (the first sample beyond too near it is dropped).
-  auto samples_on_row = [&](const std::vector<double>& samples, double v) {
-    if (surface.closed || (surface.u_straight[0] <= u_lo && surface.u_straight[1] >= u_hi)) return samples;
-    std::vector<double> mid;  // the samples on the lofted part
-    for (double u : samples)
-      if (u > surface.u_straight[0] && u < surface.u_straight[1]) mid.push_back(u);
-    if (mid.size() < 2) return samples;
-    // One end's piece, from the face towards the join (which is not included).
-    auto piece_at = [&](int end) {
-      const double face_u = end ? u_hi : u_lo, join_u = surface.u_straight[end];
-      std::vector<double> piece{face_u};
-      if (join_u == face_u) return piece;
-      const Vec3 at_face = surface.value(face_u, v);
-      const double step = end ? mid.back() - mid[mid.size() - 2] : mid[1] - mid[0];
-      const int n = int(std::lround((at_face - surface.value(join_u, v)).norm() / step));
-      for (int k = 1; k < n; ++k) piece.push_back(face_u + (join_u - face_u) * k / n);
-      const double u_near = end ? mid.back() : mid.front();
-      if (n == 0 && mid.size() > 2 && (surface.value(u_near, v) - at_face).norm() < 0.5 * step) {
-        if (end) mid.pop_back();
-        else mid.erase(mid.begin());
-      }
-      return piece;
-    };
-    std::vector<double> out = piece_at(0);
-    const std::vector<double> last = piece_at(1);
-    out.insert(out.end(), mid.begin(), mid.end());
-    out.insert(out.end(), last.rbegin(), last.rend());
-    return out;
-  };
+  U = row_samples(controls.element_length > 0 ? std::vector<double>{} : us, 1.0);
+}
 
-  // Graded rows beside a trim line whose points lie much closer together than the first inner row is far
-  // (a fine mesh cut by the contact line: a vertex just off the line leaves cut points a fifth of an
-  // element apart, and a step of that length facing a row a profile step away is a sliver). Rows at a
-  // half, a quarter, ... of that distance, while the line's typical step (its median) is under
-  // kGradedStep of the next row out; each samples the trim line's own u thinned to 0.4 of its distance.
-  struct GradedRow {
-    double v;
-    std::vector<double> U;
-  };
-  std::vector<GradedRow> graded[2];  // side A: nearest the line first; side B: nearest the line last
+// Graded rows beside a trim line whose points lie much closer together than the first inner row is far
+// (a fine mesh cut by the contact line: a vertex just off the line leaves cut points a fifth of an
+// element apart, and a step of that length facing a row a profile step away is a sliver). Rows at a
+// half, a quarter, ... of that distance, while the line's typical step (its median) is under
+// kGradedStep of the next row out; each samples the trim line's own u thinned to 0.4 of its distance.
+void RowTessellation::plan_graded_rows() {
   for (int side = 0; side < 2; ++side) {
-    const auto& row = side ? last_row : first_row;
+    const auto& row = trim_row[side];
     std::vector<double> line_us;
     for (const RowPoint& p : row) line_us.push_back(p.u);
     std::vector<double> steps;  // trim steps relative to the profile step there
@@ -239,131 +185,179 @@ RoundMeshStats mesh_rounding_surface(const RoundingSurface& surface, const std::
     }
   }
   std::reverse(graded[0].begin(), graded[0].end());
+}
 
-  std::vector<Vec3> inner;
-  std::vector<std::array<RowPoint, 3>> tris;
-  auto position = [&](const RowPoint& p) { return p.id >= 0 ? edit.point(p.id) : inner[-1 - p.id]; };
-  // An end column lies on its end face's plane (a capped end: the trim lines' offsets within that plane
-  // only) or is the exact end profile (a mitre's, shared with the other round's).
-  auto end_offset = [&](int end, double u, double v) -> Vec3 {
-    if (shared.exact_end[end]) return Vec3::Zero();
-    const Vec3 d = offsets.at(u, v);
-    const EndCut& cut = (end ? stations.back() : stations.front()).cut;
-    return cut.active ? Vec3(d - cut.normal * d.dot(cut.normal)) : d;
-  };
-  RoundMeshStats stats;
-  for (int round = 0; round < 8; ++round) {
-    inner.clear();
-    tris.clear();
-    std::vector<std::vector<RowPoint>> rows{first_row};
-    auto add_row = [&](const std::vector<double>& row_u, double v) {
-      poll_cancel();
-      const std::vector<double> samples = samples_on_row(row_u, v);
-      std::vector<RowPoint> row;
-      for (size_t i = 0; i < samples.size(); ++i) {
-        if (surface.closed && i + 1 == samples.size()) {  // a loop's row ends where it began
-          row.push_back({row.front().id, samples[i], v});
-          break;
-        }
-        const bool end = !surface.closed && (i == 0 || i + 1 == samples.size());
-        const Vec3 p = surface.value(samples[i], v) + (end ? end_offset(i == 0 ? 0 : 1, samples[i], v) : offsets.at(samples[i], v));
-        if (end && shared.at[i == 0 ? 0 : 1]) {  // the other round's vertex at this corner
-          const int id = shared.vertex_at(p);
-          if (id < 0)
-            throw RoundingError(ErrorCode::CornerNotBlendable, "the rounds meeting at " + format_point(p) +
-                                " do not meet along one curve (their radii or faces differ there): that corner is not made yet");
-          row.push_back({id, samples[i], v});
-          continue;
-        }
-        inner.push_back(p);
-        row.push_back({-int(inner.size()), samples[i], v});
-      }
-      rows.push_back(row);
-    };
-    // The work budget, before the rows are made: every inner row point costs about two facets.
-    double planned = 0;
-    for (int side = 0; side < 2; ++side)
-      for (const GradedRow& g : graded[side]) planned += double(g.U.size());
-    planned += double(nv - 1) * double(U.size());
-    edit.check_budget(2.0 * (planned + double(edit.new_points.size())), "the round's rows");
-    for (const GradedRow& g : graded[0]) add_row(g.U, g.v);
-    for (int j = 1; j < nv; ++j) add_row(U, levels[j]);
-    for (const GradedRow& g : graded[1]) add_row(g.U, g.v);
-    rows.push_back(last_row);
-    // Zip neighbouring rows, always taking the shorter diagonal.
-    for (size_t j = 0; j + 1 < rows.size(); ++j) {
-      poll_cancel();
-      const auto &b = rows[j], &t = rows[j + 1];
-      size_t i = 0, k = 0;
-      while (i + 1 < b.size() || k + 1 < t.size()) {
-        bool bottom;
-        if (i + 1 >= b.size()) bottom = false;
-        else if (k + 1 >= t.size()) bottom = true;
-        else bottom = (position(b[i + 1]) - position(t[k])).norm() < (position(b[i]) - position(t[k + 1])).norm();
-        if (bottom) tris.push_back({b[i], b[i + 1], t[k]}), ++i;
-        else tris.push_back({b[i], t[k + 1], t[k]}), ++k;
-      }
-    }
-    // Refine u where a facet strays from the surface.
-    std::vector<std::pair<double, double>> bad;
-    stats.max_deviation = 0;
-    // Facets between a trim line and its outermost graded row are a fraction of a profile step across:
-    // their sag is a fraction of the regular rows', so the centroid alone is measured (the report's
-    // figure), and they never call for refinement.
-    const double strip_a = graded[0].empty() ? -1 : graded[0].back().v, strip_b = graded[1].empty() ? 2 : graded[1].front().v;
-    for (const auto& tri : tris) {
-      poll_cancel();
-      const bool in_strip = std::all_of(tri.begin(), tri.end(), [&](const RowPoint& p) { return p.v <= strip_a; }) ||
-                            std::all_of(tri.begin(), tri.end(), [&](const RowPoint& p) { return p.v >= strip_b; });
-      double worst = 0, from_surface = 0;
-      for (int e = 0; e < (in_strip ? 1 : 4); ++e) {  // centroid, then the three edge midpoints
-        const RowPoint* a = &tri[e == 0 ? 0 : e - 1];
-        const RowPoint* b2 = &tri[e == 0 ? 1 : e % 3];
-        Vec3 p;
-        double u, v;
-        if (e == 0) {
-          p = (position(tri[0]) + position(tri[1]) + position(tri[2])) / 3;
-          u = (tri[0].u + tri[1].u + tri[2].u) / 3, v = (tri[0].v + tri[1].v + tri[2].v) / 3;
-        } else {
-          p = 0.5 * (position(*a) + position(*b2));
-          u = 0.5 * (a->u + b2->u), v = 0.5 * (a->v + b2->v);
-        }
-        from_surface = std::max(from_surface, distance_to_surface(surface, p, u, v));
-        // A piece of the trim line stays as trimmed (its points were placed by the trim pass for the
-        // tolerance): refining the rows cannot bring it nearer.
-        if (e > 0 && a->id >= 0 && b2->id >= 0) continue;
-        worst = std::max(worst, distance_to_surface(surface, p - offsets.at(u, v), u, v));
-      }
-      stats.max_deviation = std::max(stats.max_deviation, from_surface);
-      if (!in_strip && worst > 0.9 * tolerance)
-        bad.push_back({std::min({tri[0].u, tri[1].u, tri[2].u}), std::max({tri[0].u, tri[1].u, tri[2].u})});
-    }
-    if (debug) fprintf(stderr, "refine round %d: %zu facets, %zu bad, U %zu, max dev %g\n", round, tris.size(), bad.size(), U.size(), stats.max_deviation);
-    if (bad.empty()) break;
-    // Does a bad facet's u range overlap (a, b)? Bad ranges sorted by their start, with the running
-    // largest end: one binary search per interval instead of a scan of every bad facet.
-    std::sort(bad.begin(), bad.end());
-    std::vector<double> reach_end(bad.size());
-    for (size_t i = 0; i < bad.size(); ++i) reach_end[i] = std::max(bad[i].second, i ? reach_end[i - 1] : -INFINITY);
-    auto overlaps_bad = [&](double a, double b) {
-      const size_t n = size_t(std::lower_bound(bad.begin(), bad.end(), b, [](auto& r, double x) { return r.first < x; }) - bad.begin());
-      return n > 0 && reach_end[n - 1] > a;
-    };
-    std::vector<double> refined{U.front()};
-    for (size_t i = 1; i < U.size(); ++i) {
-      poll_cancel();
-      const double a = U[i - 1], b = U[i];
-      // Never finer than the least step (a facet that still strays then sits on a trim point that
-      // lies off the surface: thinner facets would not bring it nearer).
-      const bool split = 0.5 * (b - a) >= h_min(a) && overlaps_bad(a, b);
-      if (split) refined.push_back(0.5 * (a + b));
-      refined.push_back(b);
-    }
-    if (refined.size() == U.size()) break;
-    U.swap(refined);
+// One end's straight piece of the row at v, from the face towards the join (which is not included); drops
+// the first sample beyond from `mid` (the samples on the lofted part) when it is too near the face.
+std::vector<double> RowTessellation::end_piece(int end, double v, std::vector<double>& mid) const {
+  const double face_u = end ? u_hi : u_lo, join_u = surface.u_straight[end];
+  std::vector<double> piece{face_u};
+  if (join_u == face_u) return piece;
+  const Vec3 at_face = surface.value(face_u, v);
+  const double step = end ? mid.back() - mid[mid.size() - 2] : mid[1] - mid[0];
+  const int n = int(std::lround((at_face - surface.value(join_u, v)).norm() / step));
+  for (int k = 1; k < n; ++k) piece.push_back(face_u + (join_u - face_u) * k / n);
+  const double u_near = end ? mid.back() : mid.front();
+  if (n == 0 && mid.size() > 2 && (surface.value(u_near, v) - at_face).norm() < 0.5 * step) {
+    if (end) mid.pop_back();
+    else mid.erase(mid.begin());
   }
+  return piece;
+}
 
-  // Commit: inner points become mesh vertices, facets follow in (u, v) order (counter-clockwise).
+// A carried end's straight piece (loft_profiles) is as long on each row as that row's point moves to the
+// end face: from nothing beside a contact that meets the face where the balls stop, to the setback. Each
+// inner row spaces its own points there, as the step beyond; a row whose piece is shorter than half a step
+// keeps only its end point on the face (the first sample beyond too near it is dropped).
+std::vector<double> RowTessellation::samples_on_row(const std::vector<double>& samples, double v) const {
+  if (surface.closed || (surface.u_straight[0] <= u_lo && surface.u_straight[1] >= u_hi)) return samples;
+  std::vector<double> mid;  // the samples on the lofted part
+  for (double u : samples)
+    if (u > surface.u_straight[0] && u < surface.u_straight[1]) mid.push_back(u);
+  if (mid.size() < 2) return samples;
+  std::vector<double> out = end_piece(0, v, mid);
+  const std::vector<double> last = end_piece(1, v, mid);
+  out.insert(out.end(), mid.begin(), mid.end());
+  out.insert(out.end(), last.rbegin(), last.rend());
+  return out;
+}
+
+// An end column lies on its end face's plane (a capped end: the trim lines' offsets within that plane
+// only) or is the exact end profile (a mitre's, shared with the other round's).
+Vec3 RowTessellation::end_offset(int end, double u, double v) const {
+  if (shared.exact_end[end]) return Vec3::Zero();
+  const Vec3 d = offsets.at(u, v);
+  const EndCut& cut = (end ? stations.back() : stations.front()).cut;
+  return cut.active ? Vec3(d - cut.normal * d.dot(cut.normal)) : d;
+}
+
+void RowTessellation::add_row(const std::vector<double>& row_u, double v) {
+  poll_cancel();
+  const std::vector<double> samples = samples_on_row(row_u, v);
+  std::vector<RowPoint> row;
+  for (size_t i = 0; i < samples.size(); ++i) {
+    if (surface.closed && i + 1 == samples.size()) {  // a loop's row ends where it began
+      row.push_back({row.front().id, samples[i], v});
+      break;
+    }
+    const bool end = !surface.closed && (i == 0 || i + 1 == samples.size());
+    const Vec3 p = surface.value(samples[i], v) + (end ? end_offset(i == 0 ? 0 : 1, samples[i], v) : offsets.at(samples[i], v));
+    if (end && shared.at[i == 0 ? 0 : 1]) {  // the other round's vertex at this corner
+      const int id = shared.vertex_at(p);
+      if (id < 0)
+        throw RoundingError(ErrorCode::CornerNotBlendable, "the rounds meeting at " + format_point(p) +
+                            " do not meet along one curve (their radii or faces differ there): that corner is not made yet");
+      row.push_back({id, samples[i], v});
+      continue;
+    }
+    inner.push_back(p);
+    row.push_back({-int(inner.size()), samples[i], v});
+  }
+  rows.push_back(row);
+}
+
+void RowTessellation::make_rows() {
+  inner.clear();
+  tris.clear();
+  rows = {trim_row[0]};
+  // The work budget, before the rows are made: every inner row point costs about two facets.
+  double planned = 0;
+  for (int side = 0; side < 2; ++side)
+    for (const GradedRow& g : graded[side]) planned += double(g.U.size());
+  planned += double(nv - 1) * double(U.size());
+  edit.check_budget(2.0 * (planned + double(edit.new_points.size())), "the round's rows");
+  for (const GradedRow& g : graded[0]) add_row(g.U, g.v);
+  for (int j = 1; j < nv; ++j) add_row(U, levels[j]);
+  for (const GradedRow& g : graded[1]) add_row(g.U, g.v);
+  rows.push_back(trim_row[1]);
+}
+
+// Zip neighbouring rows, always taking the shorter diagonal.
+void RowTessellation::zip_rows() {
+  for (size_t j = 0; j + 1 < rows.size(); ++j) {
+    poll_cancel();
+    const auto &b = rows[j], &t = rows[j + 1];
+    size_t i = 0, k = 0;
+    while (i + 1 < b.size() || k + 1 < t.size()) {
+      bool bottom;
+      if (i + 1 >= b.size()) bottom = false;
+      else if (k + 1 >= t.size()) bottom = true;
+      else bottom = (position(b[i + 1]) - position(t[k])).norm() < (position(b[i]) - position(t[k + 1])).norm();
+      if (bottom) tris.push_back({b[i], b[i + 1], t[k]}), ++i;
+      else tris.push_back({b[i], t[k + 1], t[k]}), ++k;
+    }
+  }
+}
+
+// The u ranges of the facets that stray from the surface (to refine); the largest distance of any facet
+// from the surface itself into the stats.
+std::vector<URange> RowTessellation::measure_facets(int round) {
+  std::vector<URange> bad;
+  stats.max_deviation = 0;
+  // Facets between a trim line and its outermost graded row are a fraction of a profile step across:
+  // their sag is a fraction of the regular rows', so the centroid alone is measured (the report's
+  // figure), and they never call for refinement.
+  const double strip_a = graded[0].empty() ? -1 : graded[0].back().v, strip_b = graded[1].empty() ? 2 : graded[1].front().v;
+  for (const auto& tri : tris) {
+    poll_cancel();
+    const bool in_strip = std::all_of(tri.begin(), tri.end(), [&](const RowPoint& p) { return p.v <= strip_a; }) ||
+                          std::all_of(tri.begin(), tri.end(), [&](const RowPoint& p) { return p.v >= strip_b; });
+    double worst = 0, from_surface = 0;
+    for (int e = 0; e < (in_strip ? 1 : 4); ++e) {  // centroid, then the three edge midpoints
+      const RowPoint* a = &tri[e == 0 ? 0 : e - 1];
+      const RowPoint* b2 = &tri[e == 0 ? 1 : e % 3];
+      Vec3 p;
+      double u, v;
+      if (e == 0) {
+        p = (position(tri[0]) + position(tri[1]) + position(tri[2])) / 3;
+        u = (tri[0].u + tri[1].u + tri[2].u) / 3, v = (tri[0].v + tri[1].v + tri[2].v) / 3;
+      } else {
+        p = 0.5 * (position(*a) + position(*b2));
+        u = 0.5 * (a->u + b2->u), v = 0.5 * (a->v + b2->v);
+      }
+      from_surface = std::max(from_surface, distance_to_surface(surface, p, u, v));
+      // A piece of the trim line stays as trimmed (its points were placed by the trim pass for the
+      // tolerance): refining the rows cannot bring it nearer.
+      if (e > 0 && a->id >= 0 && b2->id >= 0) continue;
+      worst = std::max(worst, distance_to_surface(surface, p - offsets.at(u, v), u, v));
+    }
+    stats.max_deviation = std::max(stats.max_deviation, from_surface);
+    if (!in_strip && worst > kRefineShare * tolerance)
+      bad.push_back({std::min({tri[0].u, tri[1].u, tri[2].u}), std::max({tri[0].u, tri[1].u, tri[2].u})});
+  }
+  if (debug) fprintf(stderr, "refine round %d: %zu facets, %zu bad, U %zu, max dev %g\n", round, tris.size(), bad.size(), U.size(), stats.max_deviation);
+  return bad;
+}
+
+// Refine u where a facet strays from the surface: the inner rows' steps that overlap a bad facet's u range
+// halved. False when none is (nothing left to refine).
+bool RowTessellation::refine_samples(std::vector<URange>& bad) {
+  // Does a bad facet's u range overlap (a, b)? Bad ranges sorted by their start, with the running
+  // largest end: one binary search per interval instead of a scan of every bad facet.
+  std::sort(bad.begin(), bad.end());
+  std::vector<double> reach_end(bad.size());
+  for (size_t i = 0; i < bad.size(); ++i) reach_end[i] = std::max(bad[i].second, i ? reach_end[i - 1] : -INFINITY);
+  auto overlaps_bad = [&](double a, double b) {
+    const size_t n = size_t(std::lower_bound(bad.begin(), bad.end(), b, [](auto& r, double x) { return r.first < x; }) - bad.begin());
+    return n > 0 && reach_end[n - 1] > a;
+  };
+  std::vector<double> refined{U.front()};
+  for (size_t i = 1; i < U.size(); ++i) {
+    poll_cancel();
+    const double a = U[i - 1], b = U[i];
+    // Never finer than the least step (a facet that still strays then sits on a trim point that
+    // lies off the surface: thinner facets would not bring it nearer).
+    const bool split = 0.5 * (b - a) >= h_min(a) && overlaps_bad(a, b);
+    if (split) refined.push_back(0.5 * (a + b));
+    refined.push_back(b);
+  }
+  if (refined.size() == U.size()) return false;
+  U.swap(refined);
+  return true;
+}
+
+// Commit: inner points become mesh vertices, facets follow in (u, v) order (counter-clockwise).
+RoundMeshStats RowTessellation::commit() {
   std::vector<int> ids(inner.size());
   for (size_t i = 0; i < inner.size(); ++i) ids[i] = edit.add_point(inner[i]);
   auto id_of = [&](const RowPoint& p) { return p.id >= 0 ? p.id : ids[-1 - p.id]; };
@@ -375,6 +369,23 @@ RoundMeshStats mesh_rounding_surface(const RoundingSurface& surface, const std::
   }
   stats.rows = nv + 1 + int(graded[0].size() + graded[1].size());
   return stats;
+}
+
+RoundMeshStats mesh_rounding_surface(const RoundingSurface& surface, const std::vector<ProfileStation>& stations,
+                                     const TrimLines& trim, double tolerance, const BandControls& controls, MeshEdit& edit,
+                                     const SharedEnds& shared) {
+  RowTessellation t(surface, stations, tolerance, controls, edit, shared);
+  t.place_levels();
+  t.read_trim_lines(trim);
+  t.sample_inner_rows();
+  t.plan_graded_rows();
+  for (int round = 0; round < kRefineRounds; ++round) {
+    t.make_rows();
+    t.zip_rows();
+    std::vector<URange> bad = t.measure_facets(round);
+    if (bad.empty() || !t.refine_samples(bad)) break;
+  }
+  return t.commit();
 }
 
 }  // namespace meshround
