@@ -79,7 +79,7 @@ PollLog watch_polls(const Input& in, RoundReport* report = nullptr) {
 }
 
 // Cancels from another thread `after` seconds into the run; returns the seconds from the request to
-// round_edges returning, which must be by a Cancelled error.
+// round_edges returning, which must be by a Cancelled error (-1: the run ended before the request).
 double cancel_after(const Input& in, double after) {
   std::atomic<bool> flag{false};
   std::atomic<long> polls_after{0};
@@ -106,7 +106,8 @@ double cancel_after(const Input& in, double after) {
   }
   const auto returned = Clock::now();
   canceller.join();
-  EXPECT_TRUE(cancelled) << "the run ended before the request, or did not stop";
+  if (!cancelled && returned <= requested) return -1;  // the run ended before the request: nothing measured
+  EXPECT_TRUE(cancelled) << "the run did not stop";
   // The first poll that sees the request stops the run; a pass that runs on several threads (parallel.h)
   // may have one poll in flight on each of them.
   EXPECT_GE(polls_after.load(), 1);
@@ -182,7 +183,11 @@ TEST(Cancel, RequestFromAnotherThreadStopsTheRunMidway) {
       full = std::min(full, seconds(Clock::now() - start));
     }
     for (double share : {0.1, 0.4, 0.7}) {
-      const double latency = cancel_after(*in, share * full);
+      // (On a loaded machine a run can still be faster than the fastest of three, and end before a late
+      // request: that run is tried again.)
+      double latency = -1;
+      for (int attempt = 0; attempt < 5 && latency < 0; ++attempt) latency = cancel_after(*in, share * full);
+      ASSERT_GE(latency, 0) << "five runs ended before the request at " << 100 * share << "% of the run";
       std::printf("[ cancel ] %ld facets, run of %.3f s cancelled at %.0f%%: stopped %.4f s after the request\n",
                   long(in->mesh.F.rows()), full, 100 * share, latency);
       EXPECT_LT(latency, 0.5 * kSlowdown);
