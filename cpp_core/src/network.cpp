@@ -85,6 +85,26 @@ double shared_corner_radius(const MeshTopology& input, const std::vector<SharpCh
   return *hi;
 }
 
+// The faces at vertex v, each known by one of its facets' normals (`normals`, unit), made the
+// area-weighted normals of their facets around v: each facet counts for the face nearest its normal,
+// within `same` (a cosine). A sliver's normal, from vertices stored to a few 1e-6 mm, can be 1e-4 rad off
+// its face, which puts the corner's ball 1e-4 r off the one the rounds' balls touch; the face's large
+// facets hold its plane far better.
+void face_normals_at(const MeshTopology& input, int v, double same, std::vector<Vec3>& normals) {
+  std::vector<Vec3> sum(normals.size(), Vec3::Zero());
+  for (const int* f = input.facets_begin(v); f != input.facets_end(v); ++f) {
+    const Vec3 a = input.corner(*f, 0), b = input.corner(*f, 1), c = input.corner(*f, 2);
+    const Vec3 area = (b - a).cross(c - a);
+    if (!(area.norm() > 0)) continue;
+    size_t best = 0;
+    for (size_t j = 1; j < normals.size(); ++j)
+      if (area.dot(normals[j]) > area.dot(normals[best])) best = j;
+    if (area.normalized().dot(normals[best]) > same) sum[best] += area;
+  }
+  for (size_t j = 0; j < normals.size(); ++j)
+    if (sum[j].norm() > 0) normals[j] = sum[j].normalized();
+}
+
 // Three or more picked chains ending at vertex v (chains `ids`): their faces there (each chain's two
 // sides, paired up: as many faces as chains, around the vertex), the convexity all of them share, and
 // the ball of `radius` touching all the faces -- for four or more, only where their offsets meet in one point.
@@ -109,11 +129,17 @@ SphereCorner ball_corner(const MeshTopology& input, const std::vector<SharpChain
     Vec3 sides[2];
     const int sign = convexity_at(input, c, v, sides);
     if (sign == 0) refuse("an edge there has not two facets");
-    for (const Vec3& m : sides)
-      if (std::none_of(normals.begin(), normals.end(), [&](const Vec3& o) { return o.dot(m) > same; })) normals.push_back(m);
+    std::array<size_t, 2> faces{};
+    for (int k = 0; k < 2; ++k) {
+      const auto it = std::find_if(normals.begin(), normals.end(), [&](const Vec3& o) { return o.dot(sides[k]) > same; });
+      faces[size_t(k)] = size_t(it - normals.begin());
+      if (it == normals.end()) normals.push_back(sides[k]);
+    }
+    corner.sides.push_back(faces);
     convex += sign;
   }
   if (normals.size() != n) refuse(std::to_string(normals.size()) + " faces meet there, not " + std::to_string(n));
+  face_normals_at(input, v, same, normals);
   if (size_t(std::abs(convex)) != n) refuse("convex and concave edges mixed at one corner are not blended yet");
   double miss = 0;
   if (!corner_ball(corner.vertex, normals, corner.radius, convex > 0, &corner.centre, &corner.feet, &miss))
@@ -126,6 +152,21 @@ SphereCorner ball_corner(const MeshTopology& input, const std::vector<SharpChain
   for (const Vec3& t : corner.toward)
     if ((corner.vertex - corner.centre).dot(t) <= 0) refuse("the ball touching its faces lies beyond a chain's end");
   return corner;
+}
+
+// Where chain i of a sphere corner (its index in the corner's chains) ends: on the plane through the
+// ball's centre and its feet on the chain's two faces (across the line the two faces meet in, as the
+// ball has them), the round's end profile the great-circle arc between those feet. `into`: along the
+// chain, away from the corner.
+CornerEnd sphere_end(const SphereCorner& corner, size_t i, const Vec3& into) {
+  CornerEnd end;
+  end.point = corner.vertex;
+  end.plane_point = corner.centre;
+  end.sphere = true;
+  end.feet = {corner.feet[corner.sides[i][0]], corner.feet[corner.sides[i][1]]};
+  const Vec3 across = (end.feet[0] - corner.centre).cross(end.feet[1] - corner.centre);
+  end.normal = across.dot(into) < 0 ? Vec3(-across.normalized()) : Vec3(across.normalized());
+  return end;
 }
 
 }  // namespace
@@ -218,6 +259,7 @@ std::vector<NetworkPart> find_corners(const MeshTopology& input, const std::vect
     const size_t n = c.points.size();
     return at_start ? Vec3((c.points[1] - c.points[0]).normalized()) : Vec3((c.points[n - 2] - c.points[n - 1]).normalized());
   };
+  std::map<int, std::pair<size_t, std::vector<size_t>>> balls;  // corner vertex -> its ball in `spheres`, the chains in its order
   for (size_t k = 0; k < chains.size(); ++k) {
     if (chains[k].closed) continue;
     for (bool at_start : {true, false}) {
@@ -235,12 +277,16 @@ std::vector<NetworkPart> find_corners(const MeshTopology& input, const std::vect
       if (others.size() >= 2) {
         std::vector<size_t> ids{k};
         for (const auto& o : others) ids.push_back(o.first);
-        const SphereCorner corner = ball_corner(input, chains, ids, v, shared_corner_radius(input, chains, own, ids, v, picked), opt, picked[k]);
-        if (std::none_of(spheres->begin(), spheres->end(), [&](const auto& c) { return c.first.vertex == corner.vertex; }))
-          spheres->push_back({corner, k});
-        CornerEnd end{input.point(v), into(chains[k], at_start), false};
-        end.plane_point = corner.centre, end.sphere = true;
-        out[k].corners.push_back(end);
+        const double radius = shared_corner_radius(input, chains, own, ids, v, picked);
+        // One ball for the corner, made at its first chain: every round ending there ends on it.
+        auto made = balls.find(v);
+        if (made == balls.end()) {
+          made = balls.emplace(v, std::make_pair(spheres->size(), ids)).first;
+          spheres->push_back({ball_corner(input, chains, ids, v, radius, opt, picked[k]), k});
+        }
+        const auto& [index, order] = made->second;
+        const size_t i = size_t(std::find(order.begin(), order.end(), k) - order.begin());
+        out[k].corners.push_back(sphere_end((*spheres)[index].first, i, into(chains[k], at_start)));
         continue;
       }
       shared_corner_radius(input, chains, own, {k, others[0].first}, v, picked);

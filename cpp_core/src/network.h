@@ -14,14 +14,16 @@
 
 namespace meshround {
 
-// Where a chain meets another picked chain at a corner (round_edges): the plane both rounds stop at there
-// (through the corner vertex, bisecting the two chains), and whether the other round is made already (then
-// this round's end column is that round's, see SharedEnds); and the vertices of the rounds made before.
+// Where a chain meets another picked chain at a corner (round_edges): the plane its round stops at there
+// (at a mitre, through the corner vertex, bisecting the two chains; at a sphere corner, through the
+// corner ball's centre and its feet on the chain's faces), and whether the other round is made already
+// (then this round's end column is that round's, see SharedEnds); and the vertices of the rounds made before.
 struct CornerEnd {
   Vec3 point, normal;
   bool other_made = false;
   Vec3 plane_point = point;  // the plane's point: the vertex for a mitre, the ball's centre at a sphere corner
   bool sphere = false;       // one of three or more rounds at the vertex (sphere_corner.h)
+  std::array<Vec3, 2> feet{};  // at a sphere corner: the ball's feet on the chain's two faces, where its round's end profile ends
 };
 struct NetworkPart {
   std::vector<CornerEnd> corners;

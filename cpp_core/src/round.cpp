@@ -97,6 +97,22 @@ std::vector<ProfileStation> sample_profiles(const SpineContext& ctx, const Radiu
 }
 
 
+// A round's end at a sphere corner (its station carried onto the corner's plane) is the arc of the
+// corner's ball between its feet on the chain's faces, where the other rounds there end too: the carried
+// contacts, each round's own ball solved on its own facets, land a few 1e-6 r beside the feet where the
+// faces are flat, up to about 1e-3 r where that ball leans on an earlier round's facets. Left as carried
+// (the corner then refuses) when a contact lands more than the tolerance off its foot.
+void end_on_corner_ball(const CornerEnd& corner, double tolerance, ProfileStation& st) {
+  const Vec3 lands[2] = {st.cut.onto(st.contact[0]), st.cut.onto(st.contact[1])};
+  const bool swapped = (lands[0] - corner.feet[1]).norm() + (lands[1] - corner.feet[0]).norm() <
+                       (lands[0] - corner.feet[0]).norm() + (lands[1] - corner.feet[1]).norm();
+  const Vec3 foot[2] = {corner.feet[swapped ? 1 : 0], corner.feet[swapped ? 0 : 1]};
+  for (int k = 0; k < 2; ++k)
+    if ((lands[k] - foot[k]).norm() > tolerance) return;
+  st.centre = corner.plane_point;
+  st.contact[0] = foot[0], st.contact[1] = foot[1];
+}
+
 // The profiles of a chain's round, its capped ends cut by their end faces or corners (ends.h plan_ends):
 // the balls stop at the ends' setbacks and the last one is carried on along the chain onto the plane.
 std::vector<ProfileStation> end_cut_profiles(const SpineContext& ctx, const RadiusLaw& law, double tolerance, long max_new_facets,
@@ -116,6 +132,8 @@ std::vector<ProfileStation> end_cut_profiles(const SpineContext& ctx, const Radi
     last.s = end ? L : 0.0;
     last.cut = cut[end];
     last.carried = setback[end] > 0;
+    const CornerEnd* corner = corner_at(net, end ? chain.points.back() : chain.points.front());
+    if (corner && corner->sphere) end_on_corner_ball(*corner, tolerance, last);
     if (setback[end] == 0) (end ? st.back() : st.front()) = last;
     else if (end) st.push_back(last);
     else st.insert(st.begin(), last);

@@ -11,6 +11,7 @@
 #include "meshround/mesh_delta.h"
 #include "meshround/types.h"
 
+#include <array>
 #include <vector>
 
 namespace meshround {
@@ -21,6 +22,7 @@ struct SphereCorner {
   double radius = 0;
   std::vector<Vec3> toward;  // unit, along each chain towards the vertex: the corner lies on that side of the planes
   std::vector<Vec3> feet;    // where the ball touches the faces: the corners of the patch
+  std::vector<std::array<size_t, 2>> sides;  // each chain's two faces (indices into feet), in the order of toward
 };
 
 // The ball touching the n >= 3 planes through `point` (outward unit normals) on the round's side: inside

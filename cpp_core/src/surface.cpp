@@ -124,7 +124,9 @@ LoftRows interpolate_stations(const std::vector<ProfileStation>& stations, bool 
 }
 
 // Joins the carried station to the loft's first (at_start) or last end by a straight cubic piece: its
-// poles a third and two thirds of the way (homogeneous, one weight: the section's points move linearly).
+// poles a third and two thirds of the way, weights with them (homogeneous: each section point moves on a
+// straight line, to the carried arc's own point -- a carried arc that is not the join's translate, as at
+// a sphere corner where it is the corner ball's arc, has weights a hair different).
 void add_carried_piece(LoftRows& rows, const ProfileStation& carried, bool at_start) {
   Vec3 end[3];
   double w[3];
@@ -135,9 +137,10 @@ void add_carried_piece(LoftRows& rows, const ProfileStation& carried, bool at_st
     const Vec3 from = at_start ? P.front() : P.back(), to = end[j] * w[j];
     const double w_from = at_start ? W.front() : W.back();
     const Vec3 piece[3] = {from + (to - from) / 3, from + 2 * (to - from) / 3, to};
-    for (const Vec3& q : piece) {
-      if (at_start) P.insert(P.begin(), q), W.insert(W.begin(), w_from);
-      else P.push_back(q), W.push_back(w_from);
+    const double piece_w[3] = {w_from + (w[j] - w_from) / 3, w_from + 2 * (w[j] - w_from) / 3, w[j]};
+    for (int i = 0; i < 3; ++i) {
+      if (at_start) P.insert(P.begin(), piece[i]), W.insert(W.begin(), piece_w[i]);
+      else P.push_back(piece[i]), W.push_back(piece_w[i]);
     }
   }
   if (at_start) {

@@ -114,6 +114,33 @@ def test_the_drafted_whole_pocket_s_coarse_mesh_rounds_at_3_like_occt():
     assert max(c["normal_jump_deg"] for c in res.report["corners"]) <= G1_DEG
 
 
+# The drafted whole pocket on a 1 mm mesh: refused result_invalid at every radius (a degenerate facet at
+# (58.14, 41.20, 19.52) at r = 2) until the rounds ending at a floor corner ended on one ball: each chain
+# solved its own corner ball from the first facets it met at the vertex (slivers, their normals 1e-4 rad
+# off the face), so the three rounds' end planes passed through centres up to 2.3e-4 mm apart and their
+# end arcs met the wall 1.4e-5 mm apart. Now the corner's ball is made once, from the faces' area-weighted
+# normals, and each round's end arc is that ball's arc between its feet (network.cpp, round.cpp).
+@pytest.mark.parametrize("r", [1.5, 2.0, 3.0])
+def test_the_drafted_whole_pocket_s_1_mm_mesh_rounds_like_occt(r):
+    case = cases.Case(f"pocket_all_10_r{r:g}", cases.pocket_all(10.0), r)
+    mesh = cases.mesh_of(case.solid, MaxLength=1.0)
+    before = mesh.Topology
+    res = MeshRound.round_edges(mesh, case.seeds, r, tolerance=r / 100)
+    assert mesh.Topology == before
+    row = reference.score(case, mesh, res.mesh, res.report)
+    assert row["boundary_edges_out"] == row["boundary_edges_in"] == 0
+    assert (row["nonmanifold_edges"], row["misoriented_edges"], row["degenerate_facets"]) == (0, 0, 0)
+    assert row["orientation_kept"] and not row["self_intersections"]
+    assert row["far_vertices_lost"] == row["far_facets_lost"] == row["far_facets_added"] == 0
+    dev = reference.corner_deviations(case, mesh, res.mesh)
+    far_bound = reference.allowed_deviation(row)  # the tolerance and the input's own chordal error
+    near_bound = 0.03 + row["input_error"] + reference.MEASURE
+    assert max(dev["far"]) <= far_bound, (dev, far_bound, row)
+    assert max(dev["near"]) <= near_bound, (dev, near_bound, row)
+    assert sorted(c["kind"] for c in res.report["corners"]) == ["rolled"] * 4 + ["sphere"] * 4
+    assert max(c["normal_jump_deg"] for c in res.report["corners"]) <= G1_DEG
+
+
 def pocket_floor():
     s = cases.pocket_block()
     return s, cases.edges_where(s, lambda p: 19 < p.x < 61 and 14 < p.y < 46 and abs(p.z - 18) < 1e-6)
