@@ -415,6 +415,15 @@ def smoothness_and_quality(case, geo, V0, F0, V1, F1, t0, t1, made, reach, featu
 MEASURE = 0.002  # / r: the yardstick's own precision (exact solids tessellated to 5e-4 r, samples)
 
 
+def assert_sound_and_local(row):
+    """A scored rounding of a closed mesh (score's row): still closed, no non-manifold, mis-oriented or
+    degenerate facet, its orientation kept, no self-intersection, nothing lost or added away from the band."""
+    assert row["boundary_edges_out"] == row["boundary_edges_in"] == 0, row
+    assert (row["nonmanifold_edges"], row["misoriented_edges"], row["degenerate_facets"]) == (0, 0, 0), row
+    assert row["orientation_kept"] and not row["self_intersections"], row
+    assert row["far_vertices_lost"] == row["far_facets_lost"] == row["far_facets_added"] == 0, row
+
+
 def allowed_deviation(row):
     """The deviation bound of a scored row, / r: the tolerance, the input's own chordal error, MEASURE."""
     return row["tolerance"] / row["r"] + row["input_error"] + MEASURE

@@ -41,10 +41,7 @@ def assert_sound_and_like_occt(case, mesh):
     res = MeshRound.round_edges(mesh, case.seeds, case.radius)
     assert mesh.Topology == before
     row = reference.score(case, mesh, res.mesh, res.report)
-    assert row["boundary_edges_out"] == row["boundary_edges_in"] == 0
-    assert (row["nonmanifold_edges"], row["misoriented_edges"], row["degenerate_facets"]) == (0, 0, 0)
-    assert row["orientation_kept"] and not row["self_intersections"]
-    assert row["far_vertices_lost"] == row["far_facets_lost"] == row["far_facets_added"] == 0
+    reference.assert_sound_and_local(row)
     dev = reference.corner_deviations(case, mesh, res.mesh)
     far_bound = reference.allowed_deviation(row)
     near_bound = NEAR_CORNER + row["input_error"] + reference.MEASURE
