@@ -120,7 +120,10 @@ def test_the_drafted_whole_pocket_s_coarse_mesh_rounds_at_3_like_occt():
 # off the face), so the three rounds' end planes passed through centres up to 2.3e-4 mm apart and their
 # end arcs met the wall 1.4e-5 mm apart. Now the corner's ball is made once, from the faces' area-weighted
 # normals, and each round's end arc is that ball's arc between its feet (network.cpp, round.cpp).
-@pytest.mark.parametrize("r", [1.5, 2.0, 3.0])
+# At r = 3.5 it was refused beyond_reach on the rim until the band's corner on a wall corner round's end
+# plane took the end's own parameter (trim_lines.cpp corner_u): the round's rows stopped 0.33 mm under the
+# top face, the gap was sewn with facets 36 deg off it, and the rim, broken there, lost its top face.
+@pytest.mark.parametrize("r", [1.5, 2.0, 3.0, 3.5])
 def test_the_drafted_whole_pocket_s_1_mm_mesh_rounds_like_occt(r):
     case = cases.Case(f"pocket_all_10_r{r:g}", cases.pocket_all(10.0), r)
     assert_whole_pocket_like_occt(case, cases.mesh_of(case.solid, MaxLength=1.0), r)
