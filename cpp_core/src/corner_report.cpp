@@ -198,13 +198,12 @@ CornerReport report_rolled_corner(const Points& V, const Triangles& F, const Rol
                                   const RoundedChain& rolled, double odd_radius, int odd_index, int rolled_index) {
   CornerReport c;
   c.vertex = corner.vertex, c.kind = "rolled", c.chains = {odd_index, rolled_index}, c.radius = odd_radius;
-  const double r = odd_radius, s = corner.odd_convex ? 1 : -1;
+  const double r = odd_radius, s = corner.odd_convex ? 1 : -1, t = corner.pair_convex ? 1 : -1;
   double near = 4 * r;  // the neighbourhood: 4 x the larger of the two rounds' radii
   for (size_t i = 0; i < rolled.spine.size(); ++i) near = std::max(near, 4 * (rolled.spine[i] - rolled.contacts[0][i]).norm());
   // The rolled round's balls near the vertex that lean on the odd round (their contact on it): the angle
-  // between the two outward normals at the contact -- the balls touch from either side of the surface,
-  // one in the solid and one outside, so those are s (p - odd centre) and s (rolled centre - p), s = +1
-  // when the odd round is convex.
+  // between the two outward normals at the contact, s (p - odd centre) and t (p - rolled centre), s and t
+  // +1 where the odd and the rolled round are convex (their balls in the solid), -1 where concave.
   int side = -1;
   for (size_t i = 0; i < rolled.spine.size(); ++i)
     for (int k = 0; k < 2; ++k) {
@@ -213,7 +212,7 @@ CornerReport report_rolled_corner(const Points& V, const Triangles& F, const Rol
       const OnRound o = on_round(odd, p);
       if (!o.on_arc || o.misfit > kOnSurfaceShare * r) continue;
       side = k;
-      c.normal_jump_deg = std::max(c.normal_jump_deg, angle_deg(s * (p - o.centre), s * (rolled.spine[i] - p)));
+      c.normal_jump_deg = std::max(c.normal_jump_deg, angle_deg(s * (p - o.centre), t * (p - rolled.spine[i])));
     }
   if (side < 0) return c;
   // The mesh's seam: its vertices on the odd round along that contact line, their distance (and the seam

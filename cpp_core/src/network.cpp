@@ -34,6 +34,17 @@ constexpr double kCornerBallMissShare = 0.1;
 constexpr double kSameCornerRadiusShare = 1e-3;
 // A radius law into a corner holds its value over this many radii before the corner (its end's setback).
 constexpr double kCornerLawHoldRadii = 2.0;
+// Three rounds of one convexity, two of radius r and one of R > r: the two roll on around the larger one's
+// end where the ring their balls' centres run on round its axis, R - r, is at least this share of r (R at
+// least 1.5 r). A tighter ring puts their contact line on the face on a circle far smaller than the ball,
+// which the trim and the rows do not follow: measured on a box corner, R = 8 with r = 7 and 7.5 refused
+// result_invalid or 0.03-0.2 r off OCCT's torus, with r = 5.33 to 6 within 0.011 r on fine, coarse and CAD meshes.
+constexpr double kRolledRingShare = 0.5;
+// ... and where the larger round's chain stands square to the face the other two share, within this many
+// degrees: then their balls' centres run on a circle round its axis (a torus, as OCCT's fillet makes it).
+// Off square (a drafted pocket's wall corner into its floor) that rolling was measured too: refused
+// result_invalid on coarse meshes from a 1 deg draft, 0.014 r off OCCT's corner on a 1 mm mesh at 10 deg.
+constexpr double kSquareCornerDeg = 0.25;
 
 // +1 where chain c's edge at its end vertex v is convex (the solid's angle there is under 180 degrees),
 // -1 where it is concave, 0 where that edge has not two facets; n: the two facets' normals.
@@ -81,8 +92,56 @@ double shared_corner_radius(const MeshTopology& input, const std::vector<SharpCh
   if (*hi - *lo > kSameCornerRadiusShare * own[ids[0]].effective_tolerance())
     throw RoundingError(ErrorCode::CornerNotBlendable, "the chains picked at and around " + format_point(picked[ids[0]]) + " meet at " +
                         format_point(input.point(v)) + " with radii " + format_number(*lo) + " and " + format_number(*hi) +
-                        " there: rounds of different radii meeting at a corner are not blended yet (give them one radius at that corner)");
+                        " there: " + (ids.size() == 3 ? "three rounds of one convexity take different radii only where two share one and the third's is "
+                                                         "at least " + format_number(1 + kRolledRingShare) + " times it (the two roll on around its round); "
+                                                         "other radii there need a corner patch, not made yet"
+                                                       : std::string("rounds of different radii meeting at a corner are not blended yet")) +
+                        " (give them one radius at that corner)");
   return *hi;
+}
+
+// Three rounds of one convexity ending at vertex v (chains `ids`, each with its own options): the one (0, 1
+// or 2) whose radius there is larger than the other two's, which are one radius, by kRolledRingShare of
+// theirs at least, or -1. The two then roll on around its end as one round, as OCCT's fillet makes that
+// corner (a torus; require_square_corner); equal radii meet in the corner's ball (ball_corner), others are
+// refused (shared_corner_radius). A law still changing near the corner gives -1 here, and is refused there.
+int larger_radius_at(const MeshTopology& input, const std::vector<SharpChain>& chains, const std::vector<RoundOptions>& own,
+                     const std::vector<size_t>& ids, int v) {
+  double r[3];
+  for (int i = 0; i < 3; ++i) {
+    bool changing = false;
+    r[i] = radius_at_end(own[ids[size_t(i)]], chains[ids[size_t(i)]], v, &changing);
+    if (changing) return -1;
+  }
+  const double same = kSameCornerRadiusShare * own[ids[0]].effective_tolerance();
+  for (int i = 0; i < 3; ++i) {
+    const double a = r[(i + 1) % 3], b = r[(i + 2) % 3];
+    if (std::abs(a - b) <= same && r[i] - std::max(a, b) >= kRolledRingShare * std::max(a, b)) return i;
+  }
+  return -1;
+}
+
+// Refuses (corner_not_blendable, naming the vertex) a corner where chain `odd` of `ids` -- the larger
+// round, made first -- does not stand square to the face the other two share (kSquareCornerDeg).
+void require_square_corner(const MeshTopology& input, const std::vector<SharpChain>& chains, const std::vector<size_t>& ids, int odd,
+                           int v, const std::vector<Vec3>& picked) {
+  Vec3 a[2], b[2];
+  convexity_at(input, chains[ids[size_t((odd + 1) % 3)]], v, a);
+  convexity_at(input, chains[ids[size_t((odd + 2) % 3)]], v, b);
+  Vec3 shared = a[0];  // the side of the first that is nearest to a side of the second
+  double best = -2;
+  for (const Vec3& x : a)
+    for (const Vec3& y : b)
+      if (x.dot(y) > best) best = x.dot(y), shared = (x + y).normalized();
+  const SharpChain& c = chains[ids[size_t(odd)]];
+  const int next = c.vertices.front() == v ? c.vertices[1] : c.vertices[c.vertices.size() - 2];
+  const Vec3 along = (input.point(next) - input.point(v)).normalized();
+  const double off = std::acos(std::min(1.0, std::abs(along.dot(shared)))) * 180 / M_PI;
+  if (off > kSquareCornerDeg)
+    throw RoundingError(ErrorCode::CornerNotBlendable, "the chain picked at " + format_point(picked[ids[size_t(odd)]]) + " meets two of a smaller radius at " +
+                        format_point(input.point(v)) + ", leaning " + format_number(off) + " deg off square to the face they share: they roll on "
+                        "around its end only where it stands square to that face (a torus); other corners of different radii need a corner "
+                        "patch, not made yet (give them one radius at that corner)");
 }
 
 // The faces at vertex v, each known by one of its facets' normals (`normals`, unit), made the
@@ -195,7 +254,7 @@ std::vector<int> plan_stages(const MeshTopology& input, const std::vector<SharpC
                           ": such corners are not made together yet (round them in two calls)");
     want[k] = stage, asked_at[k] = at;
   };
-  std::vector<RoundOptions> own;  // each chain's options, made the first time a law meets a rolled corner
+  std::vector<RoundOptions> own;  // each chain's options, made the first time a law meets a corner of three
   for (const auto& [v, ids] : ending) {
     // A flipped or non-manifold facet at a corner would pass for another face meeting there: the input's
     // fault, named as such before the corner is judged.
@@ -206,12 +265,19 @@ std::vector<int> plan_stages(const MeshTopology& input, const std::vector<SharpC
       Vec3 normals[2];
       for (int i = 0; i < 3; ++i) sign[i] = convexity_at(input, chains[ids[i]], v, normals);
       const int sum = sign[0] + sign[1] + sign[2];
-      if (sign[0] && sign[1] && sign[2] && std::abs(sum) == 1) {  // two of one convexity, one of the other
-        const int odd = sign[0] != sign[1] ? (sign[0] != sign[2] ? 0 : 1) : 2;
+      if (!opt.radius_law.empty() && own.empty()) own = options_per_chain(opt, chains, picked);
+      int odd = -1;
+      if (sign[0] && sign[1] && sign[2] && std::abs(sum) == 1)  // two of one convexity, one of the other
+        odd = sign[0] != sign[1] ? (sign[0] != sign[2] ? 0 : 1) : 2;
+      else if (sign[0] && sign[1] && sign[2] && !own.empty()) {  // one convexity: the larger of two radii, if any
+        odd = larger_radius_at(input, chains, own, ids, v);
+        if (odd >= 0) require_square_corner(input, chains, ids, odd, v, picked);
+      }
+      if (odd >= 0) {
         RolledCorner c;
         c.vertex = input.point(v), c.odd = ids[size_t(odd)], c.odd_convex = sign[odd] > 0;
         c.pair = {ids[size_t((odd + 1) % 3)], ids[size_t((odd + 2) % 3)]};
-        if (!opt.radius_law.empty() && own.empty()) own = options_per_chain(opt, chains, picked);
+        c.pair_convex = sign[(odd + 1) % 3] > 0;
         if (!own.empty() && !constant_radius(own[c.odd]))
           throw RoundingError(ErrorCode::CornerNotBlendable, "the chain picked at " + format_point(picked[c.odd]) + " meets the others at " +
                               format_point(c.vertex) + ", where it is rounded first and they roll on around its end: a variable radius "

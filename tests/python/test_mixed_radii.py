@@ -6,9 +6,12 @@ chain meeting at it.
   the rim rolls on around them with its own: any two radii. Scored both ways against OCCT's fillet of the
   CAD solid with each edge's own radius (a Part::Fillet feature), beyond 1 r of every corner vertex within
   the tolerance, within 1 r within three tolerances (the issue's bounds).
-- Mitres and sphere corners need one radius at the corner: chains with radii of their own (or laws) that
-  agree there round; radii that differ there, or a law still changing within 2 r of the corner, are
-  refused naming the vertex, the input intact, and plan_network says so before any rounding.
+- Three rounds of one convexity, two of radius r and one of R >= 1.5 r standing square to the face the two
+  share (a box's vertical edge under its top edges, a square pocket's wall corner over its floor): the
+  larger is made first and the two roll on around it, OCCT's torus; scored the same way.
+- Otherwise mitres and sphere corners need one radius at the corner: chains with radii of their own (or
+  laws) that agree there round; radii that differ there, or a law still changing within 2 r of the corner,
+  are refused naming the vertex, the input intact, and plan_network says so before any rounding.
 """
 import json
 
@@ -168,17 +171,84 @@ def test_radii_that_differ_at_a_mitre_are_refused_naming_the_corner(name, law, s
     assert plan.refusal == str(err.value)
 
 
-def test_radii_that_differ_at_a_sphere_corner_are_refused_naming_the_corner():
+def along_x(e):
+    return abs(e.Vertexes[0].Point.x - e.Vertexes[1].Point.x) > 1
+
+
+def occt_corner_is_a_torus(case, near):
+    """OCCT's own fillet has a toroidal face at the corner `near` (x, y, z): the case is the one where the
+    rolling ball's corner is exact and OCCT makes it so."""
+    return any(type(f.Surface).__name__ == "Toroid" and f.distToShape(Part.Vertex(V(*near)))[0] <= case.r_max
+               for f in case.reference.Faces)
+
+
+TORUS_CORNERS = [  # (name, case builder, each edge's radius, the corners that are tori in OCCT's fillet, meshes)
+    ("box_5_5_8", cases.box_corner, lambda e: 8.0 if vertical(e) else 5.0, [(100, 60, 40)], ["fine", "coarse", "cad"]),
+    ("box_5_8_5", cases.box_corner, lambda e: 5.0 if vertical(e) or along_x(e) else 8.0, [(100, 60, 40)], ["fine"]),
+    ("box_5.33_5.33_8", cases.box_corner, lambda e: 8.0 if vertical(e) else 5.33, [(100, 60, 40)], ["coarse"]),
+    ("pocket_walls5_rim3_floor3", cases.pocket_all(0.0), lambda e: 5.0 if vertical(e) else 3.0,
+     [(x, y, z) for x in (20, 60) for y in (15, 45) for z in (18, 30)], ["fine", "coarse", "cad"]),
+]
+
+
+@pytest.mark.parametrize("name, builder, radius_of, tori, variant",
+                         [(n, b, r, t, v) for n, b, r, t, vs in TORUS_CORNERS for v in vs],
+                         ids=[f"{n}-{v}" for n, _, _, _, vs in TORUS_CORNERS for v in vs])
+def test_two_rounds_roll_on_around_a_larger_one_of_their_convexity(name, builder, radius_of, tori, variant):
+    """Three rounds of one convexity at a corner, two of one radius r and the third R >= 1.5 r, its chain
+    square to the face the two share: the larger is made first and the two roll on around its end as one
+    round -- OCCT's torus (a box's vertical edge of 8 under top edges of 5; a square pocket's floor of 3
+    around wall corners of 5, rolled around at the rim too). Refused before (radii 5 and 8 at a corner)."""
+    case = cases.Case(name, builder, None, edge_radius=radius_of)
+    assert all(occt_corner_is_a_torus(case, p) for p in tori)
+    res = assert_sound_and_like_occt(case, case.mesh(variant))
+    rolled = [c for c in res.report["corners"] if c["kind"] == "rolled"]
+    assert len(rolled) == len(tori) == len(res.report["corners"])
+    for c in rolled:  # measured against the larger round, made first: G1 where the others lean on it
+        assert c["radius"] == case.r_max and c["seam_vertices"] >= 5, c
+        assert c["deviation"] <= case.r_max / 100 and c["normal_jump_deg"] <= 1.0, c
+    plan = MeshRound.plan_network(case.mesh(variant), case.seeds, case.radius)
+    assert plan.refusal is None and sorted(c["kind"] for c in plan.corners) == ["rolled"] * len(tori)
+
+
+SPHERE_CORNER_REFUSED = [  # (the box corner's three edges' radii, whichever edge takes which, what the message says)
+    ((5.0, 5.0, 7.0), "at least 1.5 times"),   # the ring round the larger round's axis too tight
+    ((8.0, 8.0, 5.0), "at least 1.5 times"),   # the odd one smaller: no ball of 8 rolls on inside a round of 5
+    ((4.0, 6.0, 8.0), "radii 4 and 8"),        # three radii: a corner patch
+]
+
+
+@pytest.mark.parametrize("radii, says", SPHERE_CORNER_REFUSED)
+def test_radii_that_differ_at_a_sphere_corner_otherwise_are_refused_naming_the_corner(radii, says):
     solid, edges = cases.box_corner()
     mesh = cases.mesh_of(solid, MaxLength=2.0)
     seeds = [e.valueAt(0.5 * (e.FirstParameter + e.LastParameter)) for e in edges]
-    law = [(s, r) for s, r in zip(seeds, (5.0, 5.0, 8.0))]
+    law = [(s, r) for s, r in zip(seeds, radii)]
     before = mesh.Topology
     with pytest.raises(MeshRound.RoundingError) as err:
         MeshRound.round_edges(mesh, seeds, law)
-    assert err.value.code == "corner_not_blendable" and "(100, 60, 40)" in str(err.value) and "radii 5 and 8" in str(err.value)
+    assert err.value.code == "corner_not_blendable" and "(100, 60, 40)" in str(err.value) and says in str(err.value), str(err.value)
     assert mesh.Topology == before
-    # the same three chains with one radius each, all 5, round: the corner is the ball of 5
+    assert MeshRound.plan_network(mesh, seeds, law).refusal == str(err.value)
+
+
+def test_a_larger_round_off_square_to_the_face_the_others_share_is_refused():
+    """A drafted pocket (1 deg): its wall corners lean 1.4 deg off the floor's normal, so the floor's balls would
+    not run on a torus round them (such rolling was refused or 0.014 r off OCCT's corner when tried); the
+    floor corners are refused naming the lean, the input intact."""
+    case = cases.Case("pocket_all_1_walls5_rest3", cases.pocket_all(1.0), None, edge_radius=lambda e: 5.0 if vertical(e) else 3.0)
+    mesh = case.mesh("coarse")
+    before = mesh.Topology
+    with pytest.raises(MeshRound.RoundingError) as err:
+        MeshRound.round_edges(mesh, case.seeds, case.radius)
+    assert err.value.code == "corner_not_blendable" and "deg off square" in str(err.value) and ", 18)" in str(err.value), str(err.value)
+    assert mesh.Topology == before
+
+
+def test_one_radius_at_a_sphere_corner_is_the_ball():
+    solid, edges = cases.box_corner()
+    mesh = cases.mesh_of(solid, MaxLength=2.0)
+    seeds = [e.valueAt(0.5 * (e.FirstParameter + e.LastParameter)) for e in edges]
     res = MeshRound.round_edges(mesh, seeds, [(s, 5.0) for s in seeds])
     assert [(c["kind"], c["radius"]) for c in res.report["corners"]] == [("sphere", 5.0)]
 
