@@ -30,8 +30,10 @@ double v_at_angle_fraction(const RoundingSurface& s, const ProfileStation& st, d
 
 // Distance from p to the surface, by Gauss-Newton from the parameters (u, v) that p was made from: the
 // surface's parametrisation need not be uniform, so S(u, v) itself may lie beside p along the surface.
-double distance_to_surface(const RoundingSurface& s, const Vec3& p, double u, double v) {
+// *u, *v become the foot's parameters, v held to the surface's edges.
+double project_onto_surface(const RoundingSurface& s, const Vec3& p, double* foot_u, double* foot_v) {
   Vec3 q, su, sv;
+  double u = *foot_u, v = *foot_v;
   double best = (s.value(u, v) - p).norm();
   for (int it = 0; it < 6 && best > 0; ++it) {
     s.d1(u, v, q, su, sv);
@@ -48,7 +50,24 @@ double distance_to_surface(const RoundingSurface& s, const Vec3& p, double u, do
     }
     if (!improved || before - best < 1e-3 * before) break;  // converged
   }
+  *foot_u = u, *foot_v = v;
   return best;
+}
+
+double distance_to_surface(const RoundingSurface& s, const Vec3& p, double u, double v) { return project_onto_surface(s, p, &u, &v); }
+
+// Distance from p to the rounded result near the surface: to the surface, or, where p's foot lies on a
+// contact line (v = 0 or 1), to the surface's tangent plane there -- the face the round meets
+// tangentially. Facets between the round's last row and a chord of its trim line lie on that face beside
+// the surface's edge (far from the edge where the contact line turns tightly: a rolled corner's), not off
+// the result.
+double distance_to_result(const RoundingSurface& s, const Vec3& p, double u, double v) {
+  const double d = project_onto_surface(s, p, &u, &v);
+  if (v > 0 && v < 1) return d;
+  Vec3 q, su, sv;
+  s.d1(u, v, q, su, sv);
+  const Vec3 n = su.cross(sv);
+  return n.norm() > 0 ? std::min(d, std::abs((p - q).dot(n.normalized()))) : d;
 }
 
 // Linear interpolation at u over items sorted by key(item), held constant beyond the ends.
@@ -315,7 +334,7 @@ std::vector<URange> RowTessellation::measure_facets(int round) {
         p = 0.5 * (position(*a) + position(*b2));
         u = 0.5 * (a->u + b2->u), v = 0.5 * (a->v + b2->v);
       }
-      from_surface = std::max(from_surface, distance_to_surface(surface, p, u, v));
+      from_surface = std::max(from_surface, distance_to_result(surface, p, u, v));
       // A piece of the trim line stays as trimmed (its points were placed by the trim pass for the
       // tolerance): refining the rows cannot bring it nearer.
       if (e > 0 && a->id >= 0 && b2->id >= 0) continue;
