@@ -321,6 +321,13 @@ inline FuzzCase decode_case(const std::uint8_t* data, std::size_t size) {
   o.tolerance = in.chance(128) ? 0 : r * std::pow(10.0, in.chance(16) ? in.uniform(-3.2, -2) : in.uniform(-2, 0.3));
   o.feature_angle_deg = in.chance(160) ? 30 : in.uniform(0.5, 179.5);
   o.reach = in.chance(160) ? 3 : (in.chance(16) ? in.uniform(0, 1000) : in.uniform(1, 12));
+  // A law's points from a few multiples of r, so that chains of one radius and of 1.5 to 3 times it meet
+  // at corners (mitres, sphere and rolled corners with radii of their own). Read last: inputs made before
+  // it (they end earlier, and a spent input reads 0) decode as they did.
+  if (!o.radius_law.empty() && in.below(4) == 1) {
+    constexpr double kMultiples[4] = {1.0, 1.5, 2.0, 3.0};
+    for (RadiusControl& p : o.radius_law) p.radius = r * kMultiples[in.below(4)];
+  }
   return c;
 }
 
