@@ -26,15 +26,43 @@ constexpr double kOnRoundShare = 0.01, kChordShare = 0.02;
 // (the chord's sag, kChordShare, with room for the foot's drift along the chord's curve).
 constexpr double kFootOverShare = 2 * kChordShare;
 
-// The point of a polyline nearest p (clamped to its ends).
-Vec3 nearest_on_polyline(const std::vector<Vec3>& line, const Vec3& p) {
-  Vec3 best = line.front();
+// Where on a polyline p is nearest: its segment i and the share t along it (clamped to the line's ends).
+std::pair<size_t, double> nearest_on_segments(const std::vector<Vec3>& line, const Vec3& p) {
+  std::pair<size_t, double> best{0, 0.0};
+  double best_d2 = (line.front() - p).squaredNorm();
   for (size_t i = 0; i + 1 < line.size(); ++i) {
     const Vec3 a = line[i], d = line[i + 1] - a;
     const double t = d.squaredNorm() > 0 ? std::clamp((p - a).dot(d) / d.squaredNorm(), 0.0, 1.0) : 0.0;
-    if ((a + t * d - p).squaredNorm() < (best - p).squaredNorm()) best = a + t * d;
+    if ((a + t * d - p).squaredNorm() < best_d2) best_d2 = (a + t * d - p).squaredNorm(), best = {i, t};
   }
   return best;
+}
+
+Vec3 at_segment(const std::vector<Vec3>& line, const std::pair<size_t, double>& where) {
+  const auto [i, t] = where;
+  return i + 1 < line.size() ? Vec3((1 - t) * line[i] + t * line[i + 1]) : line[i];
+}
+
+// The point of a polyline nearest p (clamped to its ends).
+Vec3 nearest_on_polyline(const std::vector<Vec3>& line, const Vec3& p) { return at_segment(line, nearest_on_segments(line, p)); }
+
+// p's foot on `round`: on its balls (the centre nearest p on the spine, out by the radius) where that lies
+// on the round's arc between its contact lines; past a contact line, on the round's tangent plane there --
+// the face the round meets tangentially, which the balls' envelope leaves by d^2 / 2r. False when p is at
+// the centre.
+bool round_foot(const ExactRound& round, const Vec3& p, Vec3* foot) {
+  const auto where = nearest_on_segments(round.spine, p);
+  const Vec3 centre = at_segment(round.spine, where), d = p - centre;
+  if (d.norm() <= 1e-9 * round.radius) return false;
+  *foot = centre + round.radius * d.normalized();
+  if (round.contacts[0].size() != round.spine.size() || round.contacts[1].size() != round.spine.size()) return true;
+  const Vec3 a = at_segment(round.contacts[0], where) - centre, b = at_segment(round.contacts[1], where) - centre;
+  auto angle = [](const Vec3& x, const Vec3& y) { return std::atan2(x.cross(y).norm(), x.dot(y)); };
+  const double to_a = angle(a, d), to_b = angle(d, b);
+  if (to_a + to_b <= angle(a, b) + 1e-9) return true;
+  const Vec3 contact = centre + (to_a < to_b ? a : b), n = (contact - centre).normalized();
+  *foot = p - (p - contact).dot(n) * n;
+  return true;
 }
 
 // p's distance from the surface of `round` (the balls' envelope), signed: > 0 outside the balls.
@@ -72,9 +100,7 @@ BaseDistance::BaseDistance(const MeshTopology& mesh, const std::vector<int>& fac
 bool BaseDistance::exact_foot(int i, const Vec3& p, Vec3* foot) const {
   if (!rounds_ || on_round_[size_t(i)] < 0) return false;
   const ExactRound& round = (*rounds_)[size_t(on_round_[size_t(i)])];
-  const Vec3 centre = nearest_on_polyline(round.spine, p), d = p - centre;
-  if (d.norm() <= 1e-9 * round.radius) return false;
-  *foot = centre + round.radius * d.normalized();
+  if (!round_foot(round, p, foot)) return false;
   const int f = facets_[size_t(i)];
   const Vec3 on_chord = closest_point_on_triangle(*foot, mesh_.corner(f, 0), mesh_.corner(f, 1), mesh_.corner(f, 2), nullptr);
   return (on_chord - *foot).norm() <= kFootOverShare * round.radius;
@@ -94,13 +120,10 @@ Vec3 BaseDistance::closest(const Vec3& p, int* facet, int* region) const {
   if (i < 0) throw RoundingError(ErrorCode::NonManifoldInput, "a base mesh is empty near " + format_point(p));
   const int f = facets_[i];
   if (facet) *facet = f;
-  if (rounds_ && on_round_[size_t(i)] >= 0) {  // on an earlier round: its exact surface, smooth there
-    const ExactRound& round = (*rounds_)[size_t(on_round_[size_t(i)])];
-    const Vec3 centre = nearest_on_polyline(round.spine, p), d = p - centre;
-    if (d.norm() > 1e-9 * round.radius) {
-      if (region) *region = 0;
-      return centre + round.radius * d.normalized();
-    }
+  Vec3 foot;
+  if (rounds_ && on_round_[size_t(i)] >= 0 && round_foot((*rounds_)[size_t(on_round_[size_t(i)])], p, &foot)) {
+    if (region) *region = 0;  // on an earlier round: its exact surface (and the face beyond), smooth there
+    return foot;
   }
   int reg;
   const Vec3 q = closest_point_on_triangle(p, mesh_.corner(f, 0), mesh_.corner(f, 1), mesh_.corner(f, 2), &reg);

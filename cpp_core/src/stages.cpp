@@ -63,7 +63,10 @@ RoundResult round_in_stages(const Points& V, const Triangles& F, const std::vect
   // radius: plan_stages).
   std::vector<ExactRound> earlier;
   for (size_t k = 0; k < chains.size(); ++k)
-    if (index_in_first[k] >= 0 && constant_radius(own[k])) earlier.push_back({a.chains[size_t(index_in_first[k])].spine, one_radius(own[k])});
+    if (index_in_first[k] >= 0 && constant_radius(own[k])) {
+      const RoundedChain& made = a.chains[size_t(index_in_first[k])];
+      earlier.push_back({made.spine, one_radius(own[k]), {made.contacts[0], made.contacts[1]}});
+    }
   RoundResult b;
   try {
     b = round_edges_after(a.vertices, a.triangles, picks[1], stage_opt[1], earlier);

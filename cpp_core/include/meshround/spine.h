@@ -47,6 +47,10 @@ struct ProfileStation {
 struct ExactRound {
   std::vector<Vec3> spine;
   double radius = 0;
+  // Its contact lines, point for point with the spine: the round is the balls' arc between them, and past
+  // each its tangent plane there, the face it meets (a facet beside the contact line lies within r / 100
+  // of the balls' envelope past it, which bends away from the face by d^2 / 2r). Empty: the whole envelope.
+  std::vector<Vec3> contacts[2];
 };
 
 // Exact closest points on one base mesh.
