@@ -3,7 +3,9 @@ corners mitred (scene pocket_rim, the default); every edge of that pocket, the r
 rounded wall corners and the floor's corners spheres (scene pocket_all); a box corner with its three
 edges rounded, meeting in the corner ball (scene box_corner), or two of them (the top edges) mitred, the
 third edge left sharp (scene box_top_corner); a square pyramid with every edge rounded, four rounds
-meeting in the ball at its apex (scene pyramid).
+meeting in the ball at its apex (scene pyramid); every edge of the pocket with radii of their own, wall
+corners 5 under a rim and floor of 3, the rim and the floor rolling on around the wall corners (tori at the
+floor's corners, scene pocket_mixed).
 
     QTWEBENGINE_CHROMIUM_FLAGS=--no-sandbox xvfb-run -a -s "-screen 0 1600x1200x24" freecad resources/pocket_render.py
     MESHROUND_SCENE=box_corner QTWEBENGINE_CHROMIUM_FLAGS=--no-sandbox xvfb-run -a -s "-screen 0 1600x1200x24" freecad resources/pocket_render.py
@@ -50,6 +52,13 @@ SCENES = {
                    [V(40, 15, 30), V(60, 30, 30), V(40, 45, 30), V(20, 30, 30), V(20, 15, 24), V(60, 15, 24), V(60, 45, 24),
                     V(20, 45, 24), V(40, 15, 18), V(60, 30, 18), V(40, 45, 18), V(20, 30, 18)], 2.0,
                    [((-0.6, 1.0, -1.1), None, None, False), ((1.0, -0.8, -0.7), (59.0, 16.0, 24.0), 16.0, True)]),
+    "pocket_mixed": (lambda: Part.makeBox(80, 60, 30).cut(Part.makeBox(40, 30, 13, V(20, 15, 18))).removeSplitter(), 0.8,
+                     [V(40, 15, 30), V(60, 30, 30), V(40, 45, 30), V(20, 30, 30), V(20, 15, 24), V(60, 15, 24), V(60, 45, 24),
+                      V(20, 45, 24), V(40, 15, 18), V(60, 30, 18), V(40, 45, 18), V(20, 30, 18)],
+                     [(p, 5.0 if 19 < p.z < 29 else 3.0) for p in (V(40, 15, 30), V(60, 30, 30), V(40, 45, 30), V(20, 30, 30),
+                                                                   V(20, 15, 24), V(60, 15, 24), V(60, 45, 24), V(20, 45, 24),
+                                                                   V(40, 15, 18), V(60, 30, 18), V(40, 45, 18), V(20, 30, 18))],
+                     [((-0.6, 1.0, -1.1), None, None, False), ((0.9, -0.9, -0.8), (58.0, 17.0, 20.0), 14.0, True)]),
     "box_corner": (lambda: Part.makeBox(100, 60, 40), 2.0, [V(50, 60, 40), V(100, 30, 40), V(100, 60, 20)], 5.0,
                    [((-1.0, -1.1, -0.8), None, None, False), ((-1.0, -1.0, -1.0), (97.0, 57.0, 37.0), 16.0, True)]),
     "box_top_corner": (lambda: Part.makeBox(100, 60, 40), 2.0, [V(50, 60, 40), V(100, 30, 40)], 5.0,
