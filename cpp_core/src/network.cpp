@@ -105,8 +105,7 @@ double shared_corner_radius(const MeshTopology& input, const std::vector<SharpCh
 // theirs at least, or -1. The two then roll on around its end as one round, as OCCT's fillet makes that
 // corner (a torus; require_square_corner); equal radii meet in the corner's ball (ball_corner), others are
 // refused (shared_corner_radius). A law still changing near the corner gives -1 here, and is refused there.
-int larger_radius_at(const MeshTopology& input, const std::vector<SharpChain>& chains, const std::vector<RoundOptions>& own,
-                     const std::vector<size_t>& ids, int v) {
+int larger_radius_at(const std::vector<SharpChain>& chains, const std::vector<RoundOptions>& own, const std::vector<size_t>& ids, int v) {
   double r[3];
   for (int i = 0; i < 3; ++i) {
     bool changing = false;
@@ -270,7 +269,7 @@ std::vector<int> plan_stages(const MeshTopology& input, const std::vector<SharpC
       if (sign[0] && sign[1] && sign[2] && std::abs(sum) == 1)  // two of one convexity, one of the other
         odd = sign[0] != sign[1] ? (sign[0] != sign[2] ? 0 : 1) : 2;
       else if (sign[0] && sign[1] && sign[2] && !own.empty()) {  // one convexity: the larger of two radii, if any
-        odd = larger_radius_at(input, chains, own, ids, v);
+        odd = larger_radius_at(chains, own, ids, v);
         if (odd >= 0) require_square_corner(input, chains, ids, odd, v, picked);
       }
       if (odd >= 0) {
