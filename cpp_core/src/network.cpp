@@ -115,7 +115,7 @@ int larger_radius_at(const std::vector<SharpChain>& chains, const std::vector<Ro
   const double same = kSameCornerRadiusShare * own[ids[0]].effective_tolerance();
   for (int i = 0; i < 3; ++i) {
     const double a = r[(i + 1) % 3], b = r[(i + 2) % 3];
-    if (std::abs(a - b) <= same && r[i] - std::max(a, b) >= kRolledRingShare * std::max(a, b)) return i;
+    if (std::abs(a - b) <= same && r[i] - std::max(a, b) >= kRolledRingShare * std::max(a, b) - same) return i;  // (R = 1.5 r exactly, too)
   }
   return -1;
 }

@@ -186,6 +186,8 @@ TORUS_CORNERS = [  # (name, case builder, each edge's radius, the corners that a
     ("box_5_5_8", cases.box_corner, lambda e: 8.0 if vertical(e) else 5.0, [(100, 60, 40)], ["fine", "coarse", "cad"]),
     ("box_5_8_5", cases.box_corner, lambda e: 5.0 if vertical(e) or along_x(e) else 8.0, [(100, 60, 40)], ["fine"]),
     ("box_5.33_5.33_8", cases.box_corner, lambda e: 8.0 if vertical(e) else 5.33, [(100, 60, 40)], ["coarse"]),
+    # R = 1.5 r exactly, which in floating point (7.8 - 5.2 < 0.5 x 5.2) was refused as a hair under
+    ("box_5.2_5.2_7.8", cases.box_corner, lambda e: 7.8 if vertical(e) else 5.2, [(100, 60, 40)], ["coarse"]),
     # 0.0127 r off (over the bound) while the rolled balls leaned on the vertical round's balls past its
     # contact line with the side faces, where those bend away from the face (spine.h ExactRound contacts)
     ("box_1_1_3", cases.box_corner, lambda e: 3.0 if vertical(e) else 1.0, [(100, 60, 40)], ["fine"]),
