@@ -10,6 +10,7 @@
 #include <map>
 
 #include "meshround/mesh.h"
+#include "meshround/mesh_edit.h"
 #include "meshround/round.h"
 
 using namespace meshround;
@@ -90,8 +91,35 @@ void BM_AdjacencyBuild(benchmark::State& state) {
   state.counters["facets"] = double(F.rows());
 }
 
+// A trim polygon as a band through a large facet hands it over: a 100 x 50 triangle whose long side is the
+// trim line, in `sides` points, with inner points admitted within 0.5 of that line. The refinement's cost
+// per point should not grow with the polygon (it was quadratic: about 140 s for a 12,000-point line).
+void BM_RefineTrimPolygon(benchmark::State& state) {
+  const int sides = int(state.range(0));
+  Points V(3, 3);
+  V << 0, 0, 0, 1, 0, 0, 0, 1, 0;
+  Triangles F(1, 3);
+  F << 0, 1, 2;
+  const MeshTopology input(V, F);
+  Refinement refine{20.0, [](const Vec3& p) { return p.y() < 0.5; }, 0.0};
+  size_t made = 0;
+  for (auto _ : state) {
+    MeshEdit edit(input);
+    std::vector<int> polygon;
+    for (int i = 0; i < sides; ++i) polygon.push_back(edit.add_point(Vec3(100.0 * i / sides, 0, 0)));
+    polygon.push_back(edit.add_point(Vec3(100, 0, 0)));
+    polygon.push_back(edit.add_point(Vec3(50, 50, 0)));
+    std::vector<std::array<int, 3>> tris;
+    triangulate_polygon(edit, polygon, Vec3::UnitZ(), tris, refine);
+    made = tris.size();
+    benchmark::DoNotOptimize(tris.data());
+  }
+  state.counters["triangles"] = double(made);
+}
+
 }  // namespace
 
+BENCHMARK(BM_RefineTrimPolygon)->Arg(500)->Arg(1000)->Arg(4000)->Arg(16000)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_AdjacencyBuild)->Arg(10000)->Arg(100000)->Arg(1000000)->Unit(benchmark::kMillisecond)->MinTime(0.5);
 BENCHMARK(BM_RoundOneChain)->Arg(10000)->Arg(100000)->Arg(1000000)->Unit(benchmark::kMillisecond)->MinTime(0.5);
 BENCHMARK_MAIN();

@@ -3,6 +3,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <functional>
+#include <queue>
 #include <set>
 #include <string>
 #include <unordered_map>
@@ -10,6 +11,7 @@
 #include "meshround/cancel.h"
 #include "meshround/mesh_edit.h"
 #include "planar.h"
+#include "ring_index.h"
 #include "split_polygon.h"
 
 namespace meshround {
@@ -81,9 +83,11 @@ class EdgeSides {
 
 // Lawson flips inside the polygon: an inner diagonal of `todo` is flipped when the other diagonal of its
 // (convex) quadrilateral gives a larger smallest angle; the four edges around a flipped one are checked
-// again. Boundary edges never move. The triangles flipped are added to `changed`, if given.
+// again. Boundary edges never move. The triangles flipped are added to `changed`, and their corners before
+// each flip to `was`, if given.
 void flip_edges(const std::vector<Vec3>& P, const std::vector<Eigen::Vector2d>& Q, std::vector<std::array<int, 3>>& tris,
-                EdgeSides& sides, std::vector<std::uint64_t> todo, std::vector<int>* changed) {
+                EdgeSides& sides, std::vector<std::uint64_t> todo, std::vector<int>* changed,
+                std::vector<std::pair<int, std::array<int, 3>>>* was = nullptr) {
   auto key = EdgeSides::key;
   CancelPoll poll(64);
   for (size_t flips = 0; !todo.empty() && flips < 10 * tris.size() + 100;) {
@@ -104,6 +108,7 @@ void flip_edges(const std::vector<Vec3>& P, const std::vector<Eigen::Vector2d>& 
     const double now = std::min(smallest_angle(P[a], P[b], P[c]), smallest_angle(P[b], P[a], P[d]));
     const double then = std::min(smallest_angle(P[c], P[a], P[d]), smallest_angle(P[d], P[b], P[c]));
     if (then <= now + 1e-9) continue;
+    if (was) was->push_back({t, tris[t]}), was->push_back({u, tris[u]});
     tris[t] = {c, a, d}, tris[u] = {d, b, c};
     sides.erase(e);
     sides.set(key(c, d), {t, u});
@@ -157,67 +162,108 @@ std::vector<std::pair<Eigen::Vector2d, double>> mending_points(const std::vector
 // worst triangle, the first of its mending points that lies inside, clear of the sides and vertices,
 // where the caller admits points, and after which (with flips) no triangle made is worse than the one
 // mended, goes in. A point too near a side is first pushed straight away from it.
-// New points follow the polygon's own in P / Q.
+// New points follow the polygon's own in P / Q. Each point costs its own neighbourhood, not a pass over
+// the polygon: the sides and points are looked up in a RingIndex, the host triangle is found by a walk from
+// the triangle mended, the worst triangle is kept in a queue, and a point taken back undoes only its changes.
 void add_inner_points(std::vector<Vec3>& P, std::vector<Eigen::Vector2d>& Q, std::vector<std::array<int, 3>>& tris,
                       size_t boundary, const Refinement& refine, const Vec3& e1, const Vec3& e2) {
   const double quality = refine.quality_deg * M_PI / 180;
   auto to_3d = [&](const Eigen::Vector2d& x) { return in_space(P, Q, e1, e2, x); };
-  auto host_of = [&](Eigen::Vector2d& x, double spacing) {  // -1: not a good place
-    if (!inside_polygon(x, Q, boundary)) return -1;
+  improve_by_flips(P, Q, tris);  // flip-stable from here: each point's flips start at the triangles it makes
+  EdgeSides sides(tris);          // kept up to date: a point costs its own flips, not a pass over all
+  RingIndex index(Q, boundary);
+  // The triangle holding x, the first by index (as a scan would find it): found by walking from `start`
+  // across the sides x lies beyond; a scan when the walk leaves the polygon or x lies on a side.
+  auto locate = [&](const Eigen::Vector2d& x, int start) {
+    int t = start;
+    for (size_t step = 0; step < tris.size() + 8; ++step) {
+      int beyond = -1;
+      bool on_side = false;
+      for (int k = 0; k < 3 && beyond < 0; ++k) {
+        const double c = cross2(Q[tris[t][k]], Q[tris[t][(k + 1) % 3]], x);
+        if (c < 0) beyond = k;
+        on_side |= c == 0;
+      }
+      if (beyond < 0 && !on_side) return t;
+      if (beyond < 0) break;
+      const std::array<int, 2>* pair = sides.find(EdgeSides::key(tris[t][beyond], tris[t][(beyond + 1) % 3]));
+      if (!pair || (*pair)[1] < 0) break;
+      t = (*pair)[0] == t ? (*pair)[1] : (*pair)[0];
+    }
+    for (int u = 0; u < int(tris.size()); ++u) {
+      const auto &p = Q[tris[u][0]], &q = Q[tris[u][1]], &r = Q[tris[u][2]];
+      if (cross2(p, q, x) >= 0 && cross2(q, r, x) >= 0 && cross2(r, p, x) >= 0) return u;
+    }
+    return -1;
+  };
+  std::vector<int> near_sides;
+  auto host_of = [&](Eigen::Vector2d& x, double spacing, int start) {  // -1: not a good place
+    if (!index.inside(x)) return -1;
     for (int round = 0;; ++round) {  // a few times over, for a corner
       bool pushed = false;
-      for (size_t i = 0; i < boundary; ++i) {
+      index.sides_near(x, 0.5 * spacing, near_sides);
+      for (size_t n = 0; n < near_sides.size(); ++n) {
+        const size_t i = size_t(near_sides[n]);
         const Eigen::Vector2d &p = Q[i], &q = Q[(i + 1) % boundary];
         const double t = std::clamp((x - p).dot(q - p) / std::max((q - p).squaredNorm(), 1e-300), 0.0, 1.0);
         if (t <= 0 || t >= 1 || (x - (p + t * (q - p))).norm() > 0.5 * spacing) continue;  // ends: see below
         if (round == 4) return -1;
         x = p + t * (q - p) + 0.5001 * spacing * Eigen::Vector2d(-(q - p).y(), (q - p).x()).normalized();
         pushed = true;
+        index.sides_near(x, 0.5 * spacing, near_sides);  // x moved: the sides after this one, near it now
+        near_sides.erase(near_sides.begin(), std::upper_bound(near_sides.begin(), near_sides.end(), int(i)));
+        n = size_t(-1);
       }
       if (!pushed) break;
-      if (!inside_polygon(x, Q, boundary)) return -1;
+      if (!index.inside(x)) return -1;
     }
-    for (const auto& q : Q)
-      if ((q - x).norm() <= 0.25 * spacing) return -1;
+    if (index.point_within(x, 0.25 * spacing)) return -1;
     if (refine.admit && !refine.admit(to_3d(x))) return -1;
-    for (int t = 0; t < int(tris.size()); ++t) {
-      const auto &p = Q[tris[t][0]], &q = Q[tris[t][1]], &r = Q[tris[t][2]];
-      if (cross2(p, q, x) >= 0 && cross2(q, r, x) >= 0 && cross2(r, p, x) >= 0) return t;
-    }
-    return -1;
+    return locate(x, start);
   };
-  improve_by_flips(P, Q, tris);  // flip-stable from here: each point's flips start at the triangles it makes
-  EdgeSides sides(tris);          // kept up to date: a point costs its own flips, not a pass over all
   std::vector<char> hopeless(tris.size(), 0);
   // Each triangle's smallest angle, kept up to date (only the triangles a point makes or flips change).
   auto angle_of = [&](int t) { return smallest_angle(P[tris[t][0]], P[tris[t][1]], P[tris[t][2]]); };
+  auto size_of = [&](int t) {
+    const auto &a = Q[tris[t][0]], &b = Q[tris[t][1]], &c = Q[tris[t][2]];
+    return std::max({(b - a).norm(), (c - b).norm(), (a - c).norm()});
+  };
   std::vector<double> angle(tris.size());
   for (int t = 0; t < int(tris.size()); ++t) angle[t] = angle_of(t);
+  // The bad triangles, largest first (ties: the lowest index); an entry whose triangle has changed since is
+  // dropped when it comes up (the change queued the triangle again).
+  std::priority_queue<std::pair<double, int>> bad;
+  auto queue = [&](int t) {
+    if (!hopeless[t] && angle[t] < quality) bad.push({size_of(t), -t});
+  };
+  for (int t = 0; t < int(tris.size()); ++t) queue(t);
+  std::vector<std::pair<int, std::array<int, 3>>> was;
+  std::vector<std::pair<int, double>> angle_was;
   for (size_t added = 0; added < 4 * boundary + 16;) {
     poll_cancel();
     // The largest bad triangle first: its mending point lands deep inside and later ones grade towards
     // the short sides (the worst first would pile points up at the trim line).
     int worst = -1;
-    double worst_q = quality, worst_size = 0;
-    for (int t = 0; t < int(tris.size()); ++t) {
-      if (hopeless[t]) continue;
-      const double q = angle[t];
-      if (q >= quality) continue;
-      const auto &a = Q[tris[t][0]], &b = Q[tris[t][1]], &c = Q[tris[t][2]];
-      const double size = std::max({(b - a).norm(), (c - b).norm(), (a - c).norm()});
-      if (size > worst_size) worst_size = size, worst_q = q, worst = t;
+    while (!bad.empty() && worst < 0) {
+      const auto [size, minus_t] = bad.top();
+      bad.pop();
+      const int t = -minus_t;
+      if (!hopeless[t] && angle[t] < quality && size_of(t) == size) worst = t;
     }
     if (worst < 0) return;
+    const double worst_q = angle[worst];
     bool mended = false;
     std::vector<int> made;
     for (auto [x, spacing] : mending_points(Q, tris[worst])) {
-      const int host = host_of(x, spacing);
+      const int host = host_of(x, spacing, worst);
       if (host < 0) continue;
       const int k = int(P.size());
-      const std::vector<std::array<int, 3>> before = tris;
+      const size_t count = tris.size();
       Q.push_back(x), P.push_back(to_3d(x));
+      index.add_point(k);
       const auto h = tris[host];
       const int t1 = int(tris.size()), t2 = t1 + 1;
+      was.assign(1, {host, h});
       tris[host] = {h[0], h[1], k};
       tris.push_back({h[1], h[2], k});
       tris.push_back({h[2], h[0], k});
@@ -229,17 +275,25 @@ void add_inner_points(std::vector<Vec3>& P, std::vector<Eigen::Vector2d>& Q, std
       std::vector<std::uint64_t> todo;
       for (int t : made)
         for (int j = 0; j < 3; ++j) todo.push_back(EdgeSides::key(tris[t][j], tris[t][(j + 1) % 3]));
-      flip_edges(P, Q, tris, sides, std::move(todo), &made);
+      flip_edges(P, Q, tris, sides, std::move(todo), &made, &was);
       sides.stop_log();
-      const std::vector<double> angle_before = angle;
       angle.resize(tris.size());
+      angle_was.clear();
       double made_q = INFINITY;
-      for (int t : made) made_q = std::min(made_q, angle[t] = angle_of(t));
+      for (int t : made) {
+        if (size_t(t) < count) angle_was.push_back({t, angle[t]});
+        made_q = std::min(made_q, angle[t] = angle_of(t));
+      }
       if (made_q > worst_q + 1e-9) {
         mended = true;
         break;
       }
-      tris = before, angle = angle_before, P.pop_back(), Q.pop_back();  // it made a triangle as bad: take it back
+      // It made a triangle as bad: take it back.
+      for (auto it = was.rbegin(); it != was.rend(); ++it) tris[it->first] = it->second;
+      for (auto it = angle_was.rbegin(); it != angle_was.rend(); ++it) angle[it->first] = it->second;
+      tris.resize(count), angle.resize(count);
+      index.remove_point(k);
+      P.pop_back(), Q.pop_back();
       sides.undo();
     }
     if (!mended) {
@@ -247,7 +301,8 @@ void add_inner_points(std::vector<Vec3>& P, std::vector<Eigen::Vector2d>& Q, std
       continue;
     }
     hopeless.resize(tris.size(), 0);  // the triangles made may be mended again, the others not
-    for (int t : made) hopeless[t] = 0;
+    for (int t : made) hopeless[t] = 0, queue(t);
+    queue(worst);  // (when the point went into another triangle, the one mended may still be bad)
     ++added;
   }
 }
@@ -504,11 +559,12 @@ void triangulate_polygon(MeshEdit& edit, const std::vector<int>& polygon, const 
   for (size_t i = 0; i < boundary; ++i) magnitude = std::max(magnitude, P[i].cwiseAbs().maxCoeff());
   const bool flat = off <= std::max(on_plane_slack(size, magnitude), refine.flat_tolerance);
   // Two tries: the polygon whole, and with the parts refinement cannot shape split off first
-  // (split_polygon.h); the one whose smallest angle is larger is kept. Triangles index P / Q.
+  // (split_polygon.h); the one whose smallest angle is larger is kept. Triangles index P / Q. (The second
+  // is quadratic in the ring's sides: a ring longer than refine.max_split_ring gets the first only.)
   std::vector<Vec3> P_whole = P;
   std::vector<Eigen::Vector2d> Q_whole = Q;
   std::vector<std::array<int, 3>> tris = mesh_ring(P_whole, Q_whole, boundary, refine, flat, e1, e2);
-  if (refine.quality_deg > 0 && flat) {
+  if (refine.quality_deg > 0 && flat && boundary <= refine.max_split_ring) {
     auto to_3d = [&](const Eigen::Vector2d& x) { return in_space(P, Q, e1, e2, x); };
     std::vector<std::array<int, 3>> split;  // the parts split off, then the rest
     const auto rest = split_for_refinement(P, Q, boundary, refine, to_3d, split);

@@ -3,8 +3,11 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <random>
 
 #include "meshround/mesh_edit.h"
+#include "../../cpp_core/src/planar.h"
+#include "../../cpp_core/src/ring_index.h"
 
 using namespace meshround;
 
@@ -52,7 +55,7 @@ double polygon_area(const std::vector<std::pair<double, double>>& yz) {
   return a;
 }
 
-}  // namespace
+
 
 // The end face of an L-channel (legs 60 and 50 mm, thickness 10) whose inner edge got a 4 mm round, as
 // the sew pass fills it: the arc, the trim line's graded points on the legs' edges up to the reach
@@ -87,3 +90,49 @@ TEST(Triangulate, RefinementReachesTheQualityWhereAdmitted) {
   EXPECT_NEAR(refined.area, polygon_area(disc), 1e-9 * polygon_area(disc));
   EXPECT_GE(refined.smallest_angle_deg, 20);
 }
+
+// The refinement's index (ring_index.h) answers as a pass over the whole ring does, on a star-shaped ring
+// of 400 sides, long along y (slabs across y) and turned to lie along x (slabs across x).
+TEST(RingIndex, AnswersAsAPassOverTheWholeRing) {
+  for (int turned = 0; turned < 2; ++turned) {
+    std::vector<Eigen::Vector2d> Q;
+    const int n = 400;
+    for (int i = 0; i < n; ++i) {
+      const double a = 2 * M_PI * i / n, r = 10 + 4 * std::sin(7 * a) + 2 * std::cos(23 * a);
+      const Eigen::Vector2d p(r * std::cos(a), 3 * r * std::sin(a));
+      Q.push_back(turned ? Eigen::Vector2d(p.y(), -p.x()) : p);
+    }
+    const size_t boundary = Q.size();
+    planar::RingIndex index(Q, boundary);
+    std::mt19937 random(7);
+    std::uniform_real_distribution<double> across(-45, 45), near(0.05, 3);
+    std::vector<int> sides;
+    int inside = 0;
+    for (int k = 0; k < 3000; ++k) {
+      const Eigen::Vector2d x(across(random), across(random));
+      const double d = near(random);
+      ASSERT_EQ(index.inside(x), planar::inside_polygon(x, Q, boundary)) << x.transpose();
+      inside += index.inside(x);
+      index.sides_near(x, d, sides);
+      for (size_t i = 0; i < boundary; ++i) {
+        const Eigen::Vector2d &p = Q[i], &q = Q[(i + 1) % boundary];
+        const double t = std::clamp((x - p).dot(q - p) / (q - p).squaredNorm(), 0.0, 1.0);
+        if ((x - (p + t * (q - p))).norm() <= d) ASSERT_TRUE(std::binary_search(sides.begin(), sides.end(), int(i))) << i;
+      }
+      bool brute = false;
+      for (const auto& q : Q) brute |= (q - x).norm() <= d;
+      ASSERT_EQ(index.point_within(x, d), brute);
+    }
+    EXPECT_GT(inside, 300);  // the test sees both answers
+    EXPECT_LT(inside, 2700);
+    // Inner points added and taken back.
+    Q.push_back(Eigen::Vector2d(0.5, 0.5));
+    index.add_point(int(Q.size()) - 1);
+    EXPECT_TRUE(index.point_within(Eigen::Vector2d(0.6, 0.5), 0.2));
+    index.remove_point(int(Q.size()) - 1);
+    Q.pop_back();
+    EXPECT_FALSE(index.point_within(Eigen::Vector2d(0.6, 0.5), 0.2));
+  }
+}
+
+}  // namespace

@@ -50,6 +50,10 @@ struct Refinement {
                                            // plane): an end face meeting a variable round's tilted end
   double smoothing_gain_deg = 0.01;        // an inner point moves only if that raises the smallest angle
                                            // around it by more than this
+  size_t max_split_ring = 500;             // a polygon with more sides is refined whole, without first
+                                           // splitting off the parts refinement cannot shape (that try is
+                                           // quadratic in the sides: a trim line across a facet thousands of
+                                           // times the band has over ten thousand)
 };
 
 // Triangulates a simple polygon (vertex ids, in order) in the plane with normal `normal`: ear clipping
