@@ -230,6 +230,17 @@ bool SideTrim::hair_outside(int f, const Vec3& q) const {
   return false;
 }
 
+// a and b on the line, joined by an input edge: the line between them leaves that edge by more than its
+// points are spaced for (a quarter of the tolerance, as refine_line_in_facet) -- the edge is a chord of a
+// line that bends, as around a rolled corner's arc on a coarse mesh. Such an edge is not a piece of the line:
+// the cut facets' own refinement carries the line there.
+bool SideTrim::line_leaves_chord(int a, int b) const {
+  const VertexSide &sa = vs.at(a), &sb = vs.at(b);
+  const Vec3 q = ctx.surface.value(ctx.surface.wrap(sa.u + 0.5 * wrapped_delta(ctx.surface, sa.u, sb.u)), side);
+  double t;
+  return (closest_point_on_segment(q, edit.point(a), edit.point(b), &t) - q).norm() > 0.25 * opt.tolerance;
+}
+
 // Extra points of the trim line between its points `from` and `to` in cut facet f, where the contact line
 // bends or runs long inside it, appended to `polygon`.
 void SideTrim::refine_line_in_facet(int f, int from, double u_from, int to, double u_to, std::vector<int>& polygon) {
@@ -310,8 +321,9 @@ void SideTrim::cut_facets() {
   }
 }
 
-// Input edges that lie on the trim line (both ends on it) get points every max_spacing and the kept facet
-// along them is split to match (rebuild_kept): the round's boundary row stays as dense as its inner rows.
+// Input edges that lie on the trim line (both ends on it, and the line along the edge between them) get points
+// every max_spacing and the kept facet along them is split to match (rebuild_kept): the round's boundary row
+// stays as dense as its inner rows.
 void SideTrim::split_line_edges() {
   for (int f : ctx.base.facets[side])
     for (int k = 0; k < 3; ++k) {
@@ -319,7 +331,7 @@ void SideTrim::split_line_edges() {
       int a = mesh.F(f, k), b = mesh.F(f, (k + 1) % 3);
       if (a > b) std::swap(a, b);
       const VertexSide &sa = vs[a], &sb = vs[b];
-      if (sa.d != 0 || sb.d != 0) continue;
+      if (sa.d != 0 || sb.d != 0 || line_leaves_chord(a, b)) continue;
       const Vec3 pa = edit.point(a), pb = edit.point(b);
       const int segs = int(std::ceil((pb - pa).norm() / opt.max_spacing(sa.u + 0.5 * wrapped_delta(ctx.surface, sa.u, sb.u))));
       if (segs < 2 || split.count(edge_key(a, b))) continue;
