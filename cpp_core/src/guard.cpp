@@ -117,6 +117,7 @@ bool coplanar_overlap(const Triangle& s, const Triangle& t) {
 // facet a thousandth of its neighbour's size lies within a thousandth of that of any plane through their
 // common vertex.)
 constexpr double kFoldShare = 1e-3;
+constexpr double kFoldDeg = 30;  // and their normals within this of parallel or opposite
 
 bool triangles_cross(const Triangle& s, const Triangle& t, double slack) {
   bool shared = false;
@@ -126,16 +127,19 @@ bool triangles_cross(const Triangle& s, const Triangle& t, double slack) {
   for (int k = 0; k < 3; ++k)
     size[0] = std::max(size[0], (s.p[(k + 1) % 3] - s.p[k]).norm()), size[1] = std::max(size[1], (t.p[(k + 1) % 3] - t.p[k]).norm());
   const double flat = shared ? std::max(slack, kFoldShare * std::min(size[0], size[1])) : slack;
-  // Each on the other's plane: a small facet folded onto a large one lies on the large one's plane, while
-  // the large one's far corner may be well off the small one's.
+  // Either on the other's plane (a small facet folded onto a large one lies on the large one's plane, while
+  // the large one's far corner may be well off the small one's), and the two facing the same or the
+  // opposite way: a sliver standing on its neighbour's edge at a sharp angle lies within `flat` of any plane
+  // through that edge, and is no fold.
   auto on_plane_of = [flat](const Triangle& a, const Triangle& b) {
     const double bn = b.normal.norm();
     for (const Vec3& v : a.p)
       if (std::abs(b.normal.dot(v - b.p[0])) / bn > flat) return false;
     return true;
   };
-  if (on_plane_of(s, t)) return coplanar_overlap(s, t);
-  if (on_plane_of(t, s)) return coplanar_overlap(t, s);
+  const bool facing = std::abs(s.normal.normalized().dot(t.normal.normalized())) >= std::cos(kFoldDeg * M_PI / 180);
+  if (facing && on_plane_of(s, t)) return coplanar_overlap(s, t);
+  if (facing && on_plane_of(t, s)) return coplanar_overlap(t, s);
   for (int k = 0; k < 3; ++k)
     if (segment_pierces(s.p[k], s.p[(k + 1) % 3], t, slack) || segment_pierces(t.p[k], t.p[(k + 1) % 3], s, slack))
       return true;
