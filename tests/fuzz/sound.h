@@ -260,7 +260,9 @@ inline std::unordered_map<std::uint64_t, EdgeUse> edge_uses(const Triangles& F) 
   return e;
 }
 
-inline int boundary_loops(const Triangles& F, const std::unordered_map<std::uint64_t, EdgeUse>& uses) {
+// The boundary loops of F; with `kept`, only those with a vertex for which kept(v) holds.
+inline int boundary_loops(const Triangles& F, const std::unordered_map<std::uint64_t, EdgeUse>& uses,
+                          const std::function<bool(int)>& kept = nullptr) {
   std::unordered_map<int, int> parent;
   std::function<int(int)> find = [&](int x) { int& p = parent.emplace(x, x).first->second; return p == x ? x : (p = find(p)); };
   for (auto& [k, u] : uses)
@@ -269,9 +271,10 @@ inline int boundary_loops(const Triangles& F, const std::unordered_map<std::uint
       const int ra = find(a), rb = find(b);
       if (ra != rb) parent[ra] = rb;
     }
-  int loops = 0;
-  for (auto& [v, p] : parent) loops += find(v) == v;
-  return loops;
+  std::unordered_set<int> roots;
+  for (auto& [v, p] : parent)
+    if (!kept || kept(v)) roots.insert(find(v));
+  return int(roots.size());
 }
 
 // Two facets that cross by more than a touch at the coordinates' precision. The result is kept as float32
@@ -377,7 +380,14 @@ inline std::string check_sound(const SoundnessInput& s) {
       if (!ok) return "new boundary edge (a hole or crack) at " + where(a, b);
     }
   }
-  const int loops_in = boundary_loops(Fi, uses_in), loops_out = boundary_loops(Fo, uses_out);
+  // A hole whose whole rim the edit replaced was rounded over (the band's new surface covers it): not a loop
+  // the result must keep.
+  std::unordered_set<int> surviving;
+  for (int f = 0; f < Fo.rows(); ++f)
+    for (int k = 0; k < 3; ++k)
+      if (to_in[Fo(f, k)] >= 0) surviving.insert(to_in[Fo(f, k)]);
+  const int loops_in = boundary_loops(Fi, uses_in, [&](int v) { return surviving.count(v) > 0; });
+  const int loops_out = boundary_loops(Fo, uses_out);
   if (loops_in != loops_out) return "boundary loops " + std::to_string(loops_in) + " -> " + std::to_string(loops_out);
   // Self-intersection: every new facet against the facets near it (a hash grid of boxes).
   if (fresh.empty()) return "";
