@@ -158,6 +158,32 @@ std::vector<std::pair<Eigen::Vector2d, double>> mending_points(const std::vector
   return out;
 }
 
+// The triangle holding x, the first by index (as a scan would find it): found by walking from `start`
+// across the sides x lies beyond; a scan when the walk leaves the polygon or x lies on a side. -1: none.
+int locate(const std::vector<Eigen::Vector2d>& Q, const std::vector<std::array<int, 3>>& tris, const EdgeSides& sides,
+           const Eigen::Vector2d& x, int start) {
+  int t = start;
+  for (size_t step = 0; step < tris.size() + 8; ++step) {
+    int beyond = -1;
+    bool on_side = false;
+    for (int k = 0; k < 3 && beyond < 0; ++k) {
+      const double c = cross2(Q[tris[t][k]], Q[tris[t][(k + 1) % 3]], x);
+      if (c < 0) beyond = k;
+      on_side |= c == 0;
+    }
+    if (beyond < 0 && !on_side) return t;
+    if (beyond < 0) break;
+    const std::array<int, 2>* pair = sides.find(EdgeSides::key(tris[t][beyond], tris[t][(beyond + 1) % 3]));
+    if (!pair || (*pair)[1] < 0) break;
+    t = (*pair)[0] == t ? (*pair)[1] : (*pair)[0];
+  }
+  for (int u = 0; u < int(tris.size()); ++u) {
+    const auto &p = Q[tris[u][0]], &q = Q[tris[u][1]], &r = Q[tris[u][2]];
+    if (cross2(p, q, x) >= 0 && cross2(q, r, x) >= 0 && cross2(r, p, x) >= 0) return u;
+  }
+  return -1;
+}
+
 // Delaunay refinement that never splits the polygon's sides (they are shared with neighbours): for the
 // worst triangle, the first of its mending points that lies inside, clear of the sides and vertices,
 // where the caller admits points, and after which (with flips) no triangle made is worse than the one
@@ -172,30 +198,6 @@ void add_inner_points(std::vector<Vec3>& P, std::vector<Eigen::Vector2d>& Q, std
   improve_by_flips(P, Q, tris);  // flip-stable from here: each point's flips start at the triangles it makes
   EdgeSides sides(tris);          // kept up to date: a point costs its own flips, not a pass over all
   RingIndex index(Q, boundary);
-  // The triangle holding x, the first by index (as a scan would find it): found by walking from `start`
-  // across the sides x lies beyond; a scan when the walk leaves the polygon or x lies on a side.
-  auto locate = [&](const Eigen::Vector2d& x, int start) {
-    int t = start;
-    for (size_t step = 0; step < tris.size() + 8; ++step) {
-      int beyond = -1;
-      bool on_side = false;
-      for (int k = 0; k < 3 && beyond < 0; ++k) {
-        const double c = cross2(Q[tris[t][k]], Q[tris[t][(k + 1) % 3]], x);
-        if (c < 0) beyond = k;
-        on_side |= c == 0;
-      }
-      if (beyond < 0 && !on_side) return t;
-      if (beyond < 0) break;
-      const std::array<int, 2>* pair = sides.find(EdgeSides::key(tris[t][beyond], tris[t][(beyond + 1) % 3]));
-      if (!pair || (*pair)[1] < 0) break;
-      t = (*pair)[0] == t ? (*pair)[1] : (*pair)[0];
-    }
-    for (int u = 0; u < int(tris.size()); ++u) {
-      const auto &p = Q[tris[u][0]], &q = Q[tris[u][1]], &r = Q[tris[u][2]];
-      if (cross2(p, q, x) >= 0 && cross2(q, r, x) >= 0 && cross2(r, p, x) >= 0) return u;
-    }
-    return -1;
-  };
   std::vector<int> near_sides;
   auto host_of = [&](Eigen::Vector2d& x, double spacing, int start) {  // -1: not a good place
     if (!index.inside(x)) return -1;
@@ -219,7 +221,7 @@ void add_inner_points(std::vector<Vec3>& P, std::vector<Eigen::Vector2d>& Q, std
     }
     if (index.point_within(x, 0.25 * spacing)) return -1;
     if (refine.admit && !refine.admit(to_3d(x))) return -1;
-    return locate(x, start);
+    return locate(Q, tris, sides, x, start);
   };
   std::vector<char> hopeless(tris.size(), 0);
   // Each triangle's smallest angle, kept up to date (only the triangles a point makes or flips change).
