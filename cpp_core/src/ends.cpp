@@ -1,6 +1,7 @@
 #include "ends.h"
 
 #include "delta.h"
+#include "guard.h"
 
 #include "meshround/surface.h"
 
@@ -429,6 +430,87 @@ bool split_along_end_segments(const MeshTopology& mesh, const std::vector<EndSeg
     if (m.points[size_t(v)] != mesh.point(v)) moved.push_back({v, m.points[size_t(v)]});
   delta = make_delta(mesh, std::move(removed), moved, std::vector<Vec3>(m.points.begin() + n, m.points.end()), added);
   return true;
+}
+
+namespace {
+
+// The mesh boundary through vertex v, from v along its open edge (v, w0): the next vertex after (prev, cur),
+// or -1 where the boundary branches or stops.
+int next_on_boundary(const MeshTopology& mesh, int prev, int cur) {
+  int next = -1;
+  for (int x : mesh.vertex_neighbours(cur))
+    if (x != prev && mesh.edge_facet_count(cur, x) == 1) {
+      if (next >= 0) return -1;
+      next = x;
+    }
+  return next;
+}
+
+// How far the boundary through v stands off the plane (p, unit normal t) within `within` of p, followed both ways
+// from v (where an edge leaves that sphere, its point on it): the largest distance and where.
+std::pair<double, Vec3> boundary_off_plane(const MeshTopology& mesh, int v, const Vec3& t, double within) {
+  const Vec3 p = mesh.point(v);
+  std::pair<double, Vec3> worst{0.0, p};
+  for (int w0 : mesh.vertex_neighbours(v)) {
+    if (mesh.edge_facet_count(v, w0) != 1) continue;
+    for (int prev = v, cur = w0, steps = 0; cur >= 0 && cur != v && steps < 100000; ++steps) {
+      const Vec3 a = mesh.point(prev), b = mesh.point(cur);
+      const bool leaves = (b - p).norm() > within;
+      double lo = 0, hi = 1;  // (where it leaves: the edge's point at distance `within` from p)
+      for (int it = 0; leaves && it < 50; ++it) {
+        const double mid = 0.5 * (lo + hi);
+        ((a + mid * (b - a) - p).norm() > within ? hi : lo) = mid;
+      }
+      const Vec3 q = leaves ? Vec3(a + lo * (b - a)) : b;
+      if (std::abs((q - p).dot(t)) > worst.first) worst = {std::abs((q - p).dot(t)), q};
+      if (leaves) break;
+      const int next = next_on_boundary(mesh, prev, cur);
+      prev = cur, cur = next;
+    }
+  }
+  return worst;
+}
+
+// The length of the boundary loop through v if it closes within `limit`, else infinity.
+double short_loop_length(const MeshTopology& mesh, int v, double limit) {
+  for (int w0 : mesh.vertex_neighbours(v)) {
+    if (mesh.edge_facet_count(v, w0) != 1) continue;
+    double length = (mesh.point(w0) - mesh.point(v)).norm();
+    for (int prev = v, cur = w0; cur >= 0 && length <= limit;) {
+      if (cur == v) return length;
+      const int next = next_on_boundary(mesh, prev, cur);
+      if (next >= 0) length += (mesh.point(next) - mesh.point(cur)).norm();
+      prev = cur, cur = next;
+    }
+    return INFINITY;
+  }
+  return INFINITY;
+}
+
+constexpr double kHoleLoop = 8.0;  // x r: a boundary loop this short at a chain's end is a hole, not the mesh's edge
+
+}  // namespace
+
+void check_open_ends(const MeshTopology& mesh, const SharpChain& chain, const RadiusLaw& law, double tolerance) {
+  if (chain.closed) return;
+  for (int end = 0; end < 2; ++end) {
+    if ((end ? chain.end_end : chain.start_end) != ChainEnd::Boundary) continue;
+    const int v = end ? chain.vertices.back() : chain.vertices.front();
+    // The end profile spans the faces from the chain out to its contacts, r tan(turn / 2) from the edge.
+    const int e = end ? chain.num_edges() - 1 : 0;
+    const double turn = std::acos(std::clamp(mesh.facet_normal(chain.facet_a[e]).dot(mesh.facet_normal(chain.facet_b[e])), -1.0, 1.0));
+    const double s = end ? chain.length : 0.0, r = law.at(s), within = 1.001 * r * std::tan(0.5 * turn);
+    const Vec3 p = mesh.point(v);
+    const auto [off, at] = boundary_off_plane(mesh, v, chain.tangent_at(s), within);
+    if (off <= tolerance + on_plane_slack(within, p.cwiseAbs().maxCoeff())) continue;
+    if (short_loop_length(mesh, v, kHoleLoop * r) <= kHoleLoop * r)
+      throw InputFlaw("the mesh is open (a hole in it) at the end of the chain at " + format_point(p) + "; fill the hole first", p);
+    throw RoundingError(ErrorCode::CornerNotBlendable,
+                        "the chain runs off the mesh's edge at " + format_point(p) + ", but that edge is not square to it: at " +
+                            format_point(at) + " it stands " + format_number(off) + " off the plane across the chain's end "
+                            "(more than the tolerance " + format_number(tolerance) + "); a round ends only on a mesh edge in that "
+                            "plane. Trim the mesh square to the chain there, or round it before it is cut");
+  }
 }
 
 EndPlan plan_ends(const SpineContext& ctx, const RadiusLaw& law, const NetworkPart& net) {

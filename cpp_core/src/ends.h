@@ -35,6 +35,12 @@ struct EndPlan {
 };
 EndPlan plan_ends(const SpineContext& ctx, const RadiusLaw& law, const NetworkPart& net);
 
+// A chain that runs off the mesh's edge (ChainEnd::Boundary) ends on the plane across the chain's end vertex,
+// and its end profile becomes part of the mesh's edge there. That is the answer only where the mesh's edge
+// near the end (out to the end profile's contacts) lies in that plane within `tolerance`; elsewhere -- a
+// ragged crop, an edge slanted across the chain -- the call is refused (corner_not_blendable) naming the end.
+void check_open_ends(const MeshTopology& mesh, const SharpChain& chain, const RadiusLaw& law, double tolerance);
+
 // Where a side's base mesh goes on past a capped end's plane (a pocket's top face around its corner),
 // the band's corner there must run along mesh edges: the segment from the chain's end vertex to the
 // round's corner on that side (both on the plane) is made of edges. The corner becomes a vertex

@@ -57,18 +57,93 @@ Vec3 edge_middle(const MeshEdit& edit, std::uint64_t key) {
 // (non_manifold_input, `input_fault` + the place + `advice`) where the input has that flaw within `reach` of a new
 // one -- the band ran over a hole or a flipped facet the chain's own checks did not see (beyond a
 // round's end, at a corner) -- else as the result's (result_invalid, `what`).
-void check_new_flaws(const MeshEdit& edit, const std::vector<std::uint64_t>& was, const std::vector<std::uint64_t>& is, double reach,
-                     const std::string& what, const std::string& input_fault, const std::string& advice = "repair the mesh there first") {
-  if (is.size() <= was.size()) return;
-  std::vector<std::uint64_t> fresh;
-  std::set_difference(is.begin(), is.end(), was.begin(), was.end(), std::back_inserter(fresh));
-  const Vec3 at = edge_middle(edit, fresh.empty() ? is.front() : fresh.front());
+void report_new_flaw(const MeshEdit& edit, const std::vector<std::uint64_t>& was, const Vec3& at, double reach,
+                     const std::string& what, const std::string& input_fault, const std::string& advice) {
   for (std::uint64_t old : was) {
     const Vec3 p = edge_middle(edit, old);
     if ((p - at).norm() <= reach)
       throw InputFlaw(input_fault + format_point(p) + "; " + advice, p);
   }
   refuse(what, at);
+}
+
+void check_new_flaws(const MeshEdit& edit, const std::vector<std::uint64_t>& was, const std::vector<std::uint64_t>& is, double reach,
+                     const std::string& what, const std::string& input_fault, const std::string& advice = "repair the mesh there first") {
+  if (is.size() <= was.size()) return;
+  std::vector<std::uint64_t> fresh;
+  std::set_difference(is.begin(), is.end(), was.begin(), was.end(), std::back_inserter(fresh));
+  report_new_flaw(edit, was, edge_middle(edit, fresh.empty() ? is.front() : fresh.front()), reach, what, input_fault, advice);
+}
+
+// The boundary edges a rounding may make: pieces of an input boundary edge (split where a trim line or a
+// refinement point falls on it), and the end profile of a round the mesh boundary stops
+// (ChainEnd::Boundary): there the profile, in the plane across the chain's end, becomes the mesh's edge.
+// `slack`: how far off the input edge or the end plane (beyond the tolerance) a point may lie.
+class BoundaryRule {
+ public:
+  BoundaryRule(const MeshEdit& edit, const std::vector<std::uint64_t>& was, const SharpChain& chain, double reach,
+               double tolerance, double slack)
+      : edit_(edit), was_(was), reach_(reach), tolerance_(tolerance), slack_(slack) {
+    if (chain.closed) return;
+    if (chain.start_end == ChainEnd::Boundary) ends_.push_back({chain.points.front(), chain.tangent_at(0)});
+    if (chain.end_end == ChainEnd::Boundary) ends_.push_back({chain.points.back(), chain.tangent_at(chain.length)});
+  }
+
+  bool allows(std::uint64_t key) const {
+    const Vec3 a = edit_.point(int(key >> 32)), b = edit_.point(int(key & 0xffffffffu));
+    for (const End& e : ends_)
+      if (e.holds(a, reach_, tolerance_ + slack_) && e.holds(b, reach_, tolerance_ + slack_)) return true;
+    for (std::uint64_t old : was_) {
+      const Vec3 p = input_point(int(old >> 32)), q = input_point(int(old & 0xffffffffu));
+      if (on_segment(a, p, q) && on_segment(b, p, q)) return true;
+    }
+    return false;
+  }
+
+  // A vertex of the input's boundary stays on it (a snap onto a trim line may slide it along the boundary).
+  bool keeps(int v, const Vec3& moved_to) const {
+    bool on_boundary = false;
+    for (std::uint64_t old : was_) {
+      const int a = int(old >> 32), b = int(old & 0xffffffffu);
+      if (a != v && b != v) continue;
+      on_boundary = true;
+      if (on_segment(moved_to, input_point(a), input_point(b))) return true;
+    }
+    return !on_boundary;
+  }
+
+ private:
+  struct End {
+    Vec3 point, tangent;
+    bool holds(const Vec3& x, double reach, double off) const {
+      return (x - point).norm() <= reach && std::abs((x - point).dot(tangent)) <= off;
+    }
+  };
+  Vec3 input_point(int v) const { return edit_.input.point(v); }
+  bool on_segment(const Vec3& x, const Vec3& p, const Vec3& q) const {
+    const Vec3 d = q - p;
+    const double t = std::clamp((x - p).dot(d) / std::max(d.squaredNorm(), 1e-300), 0.0, 1.0);
+    return (p + t * d - x).norm() <= slack_;
+  }
+
+  const MeshEdit& edit_;
+  const std::vector<std::uint64_t>& was_;
+  double reach_, tolerance_, slack_;
+  std::vector<End> ends_;
+};
+
+// No boundary edge but those the rule allows (above); a hole the band ran into is the input's fault.
+void check_new_boundary(const MeshEdit& edit, const std::vector<std::uint64_t>& was, const std::vector<std::uint64_t>& is,
+                        const BoundaryRule& rule, double reach) {
+  for (const auto& [v, to] : edit.moved)
+    if (!rule.keeps(v, to))
+      refuse("a vertex of the mesh boundary moved off it", to);
+  std::vector<std::uint64_t> fresh;
+  std::set_difference(is.begin(), is.end(), was.begin(), was.end(), std::back_inserter(fresh));
+  for (std::uint64_t key : fresh)
+    if (!rule.allows(key))
+      report_new_flaw(edit, was, edge_middle(edit, key), reach, "a new boundary edge, a hole in the mesh",
+                      "the mesh is open (a hole in it) where the rounding goes, at ", "fill the hole first");
 }
 
 // ---------------------------------------------------------------------------------- facet crossings
@@ -306,14 +381,6 @@ void check_result(const MeshEdit& edit, const SharpChain& chain, double reach, d
   std::vector<Facet> after(kept);
   after.insert(after.end(), edit.added.begin(), edit.added.end());
 
-  const EdgeFlaws was = edge_flaws(before, changed), is = edge_flaws(after, changed);
-  check_new_flaws(edit, was.boundary, is.boundary, reach, "a new boundary edge, a hole in the mesh",
-                  "the mesh is open (a hole in it) where the rounding goes, at ", "fill the hole first");
-  check_new_flaws(edit, was.non_manifold, is.non_manifold, reach, "a new non-manifold edge, shared by more than two facets",
-                  "the mesh is non-manifold (an edge shared by more than two facets) where the rounding goes, at ");
-  check_new_flaws(edit, was.misoriented, is.misoriented, reach, "new facets facing the other way from their neighbours",
-                  "the facets are oriented against each other (a flipped facet) where the rounding goes, at ");
-
   // Where the rounding may place points: within the box of the facets it replaced, and within the reach.
   // (A variable round's end profile is tilted off its end face by up to the tolerance.)
   Vec3 lo = Vec3::Constant(INFINITY), hi = Vec3::Constant(-INFINITY);
@@ -322,6 +389,14 @@ void check_result(const MeshEdit& edit, const SharpChain& chain, double reach, d
   const double span = before.empty() ? 0.0 : (hi - lo).norm();
   const double magnitude = before.empty() ? 0.0 : std::max(lo.cwiseAbs().maxCoeff(), hi.cwiseAbs().maxCoeff());
   const double slack = on_plane_slack(span, magnitude);
+
+  const EdgeFlaws was = edge_flaws(before, changed), is = edge_flaws(after, changed);
+  check_new_boundary(edit, was.boundary, is.boundary, BoundaryRule(edit, was.boundary, chain, reach, tolerance, slack), reach);
+  check_new_flaws(edit, was.non_manifold, is.non_manifold, reach, "a new non-manifold edge, shared by more than two facets",
+                  "the mesh is non-manifold (an edge shared by more than two facets) where the rounding goes, at ");
+  check_new_flaws(edit, was.misoriented, is.misoriented, reach, "new facets facing the other way from their neighbours",
+                  "the facets are oriented against each other (a flipped facet) where the rounding goes, at ");
+
   const double margin = tolerance + 1e-6 * span + slack;
   auto in_box = [&](const Vec3& p) {
     return !(p.array() < lo.array() - margin).any() && !(p.array() > hi.array() + margin).any();

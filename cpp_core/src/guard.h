@@ -3,8 +3,10 @@
 // them -- so it costs what the band costs, and it is always on.
 //
 // Checks, each against the input's own state there (a flaw the input already had is not the result's):
-// - edges: no new boundary edge, no new non-manifold edge, no new edge whose two facets disagree in
-//   orientation (counted over every edge with an end on a changed facet: all other edges are untouched);
+// - edges: no new boundary edge but a piece of an input boundary edge or, where the mesh boundary stops the
+//   chain, its end profile (which becomes the mesh's edge there); no new non-manifold edge, no new edge whose
+//   two facets disagree in orientation (over every edge with an end on a changed facet: all other edges are
+//   untouched);
 // - facets: no degenerate made facet (a repeated vertex or an angle under kDegenerateDeg);
 // - placement: every new or moved vertex finite and within the box of the input facets around the band (a round
 //   never leaves the faces it rounds), and every made facet with a corner within `reach` of the chain;

@@ -235,6 +235,7 @@ RoundedChain round_one_chain(const MeshTopology& mesh, const ChainSeed& seed, co
   RoundingSurface surface;
   RoundedChain out;
   const std::vector<ProfileStation> stations = end_cut_profiles(ctx, law, tol, opt.max_new_facets, net, surface, &out.report.surface_deviation);
+  check_open_ends(mesh, chain, law, tol);  // (after the balls: one that does not fit is radius_too_large)
   timer.done("surface");
   if (!split) {  // a base mesh going on past an end face's plane: split along the band's corner, round that
     MeshDelta split_delta;

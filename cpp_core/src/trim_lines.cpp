@@ -38,10 +38,23 @@ constexpr double kSnapKeepsAngle = 10 * M_PI / 180;  // facets around a vertex s
 constexpr double kNearShaped = 0.4;                   // x its shortest edge: snapped if its facets keep shape
 constexpr double kHairShare = 0.25;                   // x the tolerance: a dip of the band's edge this deep is a hair
 
+// The direction a vertex on the mesh boundary may move in without moving the boundary: along its two
+// boundary edges where they run on straight (zero where they turn, or where more meet). Zero for a vertex
+// inside the mesh, with *on_boundary false.
+Vec3 along_boundary(const MeshTopology& mesh, int v, bool* on_boundary) {
+  std::vector<Vec3> out;
+  for (int w : mesh.vertex_neighbours(v))
+    if (mesh.edge_facet_count(v, w) == 1) out.push_back((mesh.point(w) - mesh.point(v)).normalized());
+  *on_boundary = !out.empty();
+  if (out.size() != 2 || out[0].dot(out[1]) > -1 + 1e-6) return Vec3::Zero();
+  return out[0];
+}
+
 // Where vertex v (at signed distance d from the contact line, `away` the line's outward direction there)
 // can move onto the line without changing the mesh's surface by more than `flat_tol`: along `away` where
-// its facets are (nearly) coplanar, along the crease where they lie in two planes (an end face's edge),
-// nowhere at a corner of three or more. False when there is no such place.
+// its facets are (nearly) coplanar, along the crease where they lie in two planes (an end face's edge) or
+// along the mesh boundary it lies on (which stays where it was), nowhere at a corner of three or more or
+// where the boundary turns. False when there is no such place.
 bool snap_target(const MeshTopology& mesh, int v, const ContactLineDistance& distance, double d, double u,
                  const Vec3& away, double flat_tol, Vec3* q, bool* on_crease) {
   const Vec3 p = mesh.point(v);
@@ -54,6 +67,12 @@ bool snap_target(const MeshTopology& mesh, int v, const ContactLineDistance& dis
     if (c.norm() > widest) widest = c.norm(), crease = c.normalized();
   }
   *on_crease = widest >= std::sin(20 * M_PI / 180);
+  bool on_boundary = false;
+  const Vec3 boundary = along_boundary(mesh, v, &on_boundary);
+  if (on_boundary) {
+    if (boundary.isZero() || (*on_crease && std::abs(boundary.dot(crease)) < 1 - 1e-6)) return false;
+    *on_crease = true, crease = boundary;
+  }
   if (!*on_crease) {  // a smooth region: across the line, if that stays on it
     *q = p - d * away;
     for (const int* g = begin; g != mesh.facets_end(v); ++g)

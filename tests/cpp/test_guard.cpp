@@ -112,6 +112,33 @@ TEST(OutputCheck, NamesANewHoleNextToAHoleOfTheInputAsTheInputs) {
   }
 }
 
+TEST(OutputCheck, RefusesAVertexOfTheMeshBoundaryMovedOffItAndPassesOneSlidAlongIt) {
+  // The input lacks one facet beside the chain. A vertex of that hole's rim moved into the hole notches the
+  // mesh's edge: refused, though no edge is new (the same vertex ids). Slid along a rim edge, it stays on it.
+  Scene s;
+  TriMesh holed = s.m;
+  const int a = s.corner(0), b = s.corner(1);
+  holed.F.row(s.facet) = holed.F.row(holed.F.rows() - 1);
+  holed.F.conservativeResize(holed.F.rows() - 1, 3);
+  const MeshTopology mesh(holed.V, holed.F);
+  ASSERT_EQ(mesh.edge_facet_count(a, b), 1);
+  const Vec3 pa = mesh.point(a), pb = mesh.point(b), c = s.centroid();
+  for (const bool along : {false, true}) {
+    MeshEdit edit{mesh};
+    edit.moved[a] = along ? Vec3(pa + 0.1 * (pb - pa)) : Vec3(pa + 0.2 * (c - pa));
+    std::string refusal;
+    try {
+      check_result(edit, s.chain, 15, 0.05);
+    } catch (const RoundingError& e) {
+      refusal = e.what();
+    }
+    if (along)
+      EXPECT_EQ(refusal, "");
+    else
+      EXPECT_NE(refusal.find("a vertex of the mesh boundary moved off it"), std::string::npos) << refusal;
+  }
+}
+
 TEST(OutputCheck, RefusesANewFacetThroughAKeptFacetAwayFromTheBand) {
   // A kept facet that shares no vertex with the edit (a wall across a thin part, a loose piece) still
   // counts: the fan dipped under the top face runs through a small upright facet standing there.

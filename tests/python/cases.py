@@ -193,6 +193,35 @@ def box_oblique_end():
     return s, edges_where(s, lambda p: abs(p.y - 40) < TOL and abs(p.z - 30) < TOL)
 
 
+def open_sheet(end_deg=0.0):
+    """A shoulder running off the mesh's edge: the top and back faces of a 60 x 40 x 30 box only (an open
+    shell, as a die's working surface is), their shared edge rounded. With `end_deg`, the top face's end at
+    x = 60 is cut at that angle in plan (the back face's end stays square): OCCT ends the round on the
+    plane across the chain's end and trims the top face where its slanted edge meets the contact line."""
+    def build():
+        box = Part.makeBox(60, 40, 30)
+        shell = Part.makeShell([f for f in box.Faces if abs(f.CenterOfMass.z - 30) < TOL or abs(f.CenterOfMass.y - 40) < TOL])
+        if end_deg:
+            cutter = Part.makeBox(100, 100, 100, V(60, -50, -20)).rotated(V(60, 40, 0), V(0, 0, 1), -end_deg)
+            shell = shell.cut(cutter).Shells[0]
+        return shell, edges_where(shell, lambda p: abs(p.y - 40) < TOL and abs(p.z - 30) < TOL)
+    return build
+
+
+def open_prism(builder):
+    """A prism case with its two end faces (x = its least and largest x) taken off: a tube open at both ends,
+    the chain running off the mesh's edge at each (a concave one for the L-section's inner edge)."""
+    def build():
+        solid, chain = builder()
+        box = solid.BoundBox
+        shell = Part.makeShell([f for f in solid.Faces if not (abs(f.BoundBox.XMax - f.BoundBox.XMin) < TOL and
+                                                                 f.BoundBox.XMin in (box.XMin, box.XMax))])
+        at = [(e.Vertexes[0].Point, e.Vertexes[-1].Point) for e in chain]
+        return shell, [e for e in shell.Edges if any((e.Vertexes[0].Point - a).Length < TOL and (e.Vertexes[-1].Point - b).Length < TOL
+                                                    for a, b in at)]
+    return build
+
+
 def box_corner():
     """A box corner with its three edges rounded: equal radii meet in a patch of the rolling ball (the
     three edges at (100, 60, 40) of a 100 x 60 x 40 box, each running its whole length)."""
@@ -491,6 +520,8 @@ SPECS = {
     "pocket_rim_draft": (pocket_rim_square(10.0), 2.0, None),
     "pocket_rim_walls": (pocket_rim_walls(), 2.0, None),
     "pocket_rim_walls_draft": (pocket_rim_walls(10.0), 2.0, None),
+    "open_sheet": (open_sheet(), 5.0, None),
+    "lchannel_open": (open_prism(lchannel), 4.0, None),
     "box_corner": (box_corner, 5.0, None),
     "box_top_corner": (box_top_corner, 5.0, None),
     "pyramid": (pyramid, 4.0, None),

@@ -6,6 +6,8 @@ point-to-triangle distances to a triangle set; the exact solids are tessellated 
 `score(case, inp, out, report)` returns every figure of one rounding; see test_accuracy.py for the bounds.
 """
 import numpy as np
+from scipy.sparse import coo_matrix
+from scipy.sparse.csgraph import connected_components
 from scipy.spatial import cKDTree
 
 import cases
@@ -365,12 +367,53 @@ def corner_deviations(case, inp, out, reach=3.0):
     return {k: tuple(v) for k, v in res.items()}
 
 
+def boundary_loops(table, keep=None):
+    """How many loops (connected pieces) the boundary edges of an edge table make; with `keep` (a bool per
+    vertex), only those with a vertex it keeps."""
+    edges = table["edges"][table["count"] == 1]
+    if not len(edges):
+        return 0
+    ids, pairs = np.unique(edges, return_inverse=True)
+    pairs = pairs.reshape(-1, 2)
+    graph = coo_matrix((np.ones(len(pairs)), (pairs[:, 0], pairs[:, 1])), shape=(len(ids), len(ids)))
+    count, label = connected_components(graph, directed=False)
+    if keep is None:
+        return int(count)
+    return len(np.unique(label[np.asarray(keep)[ids]]))
+
+
+def free_edge_points(shape, step):
+    """Points every `step` along the edges of `shape` that bound one face only (an open shell's edge)."""
+    faces_of = {}
+    for i, face in enumerate(shape.Faces):
+        for e in face.Edges:
+            faces_of.setdefault(e.hashCode(), (e, set()))[1].add(i)
+    pts = [np.array([tuple(p) for p in e.discretize(Distance=step)]) for e, faces in faces_of.values() if len(faces) == 1]
+    return np.concatenate(pts) if pts else np.zeros((0, 3))
+
+
+def boundary_off_reference(case, V1, t1):
+    """The largest distance / r from the result's boundary edges (ends and middles) to the reference's own free
+    edges: 0 without a boundary, inf for a boundary where the reference has none."""
+    edges = t1["edges"][t1["count"] == 1]
+    if not len(edges):
+        return 0.0
+    free = free_edge_points(case.reference, case.r_max / 500)
+    if not len(free):
+        return float("inf")
+    P = np.concatenate([V1[edges[:, 0]], V1[edges[:, 1]], 0.5 * (V1[edges[:, 0]] + V1[edges[:, 1]])])
+    return float(cKDTree(free).query(P)[0].max() / case.r_max)
+
+
 def topology(case, out, V0, F0, V1, F1, t0, t1):
     change = abs(signed_volume(V1, F1)) - abs(signed_volume(V0, F0))
     exact_change = case.reference.Volume - case.solid.Volume
     return dict(
         boundary_edges_in=int((t0["count"] == 1).sum()),
         boundary_edges_out=int((t1["count"] == 1).sum()),
+        boundary_loops_in=boundary_loops(t0),
+        boundary_loops_out=boundary_loops(t1),
+        boundary_off_reference=boundary_off_reference(case, V1, t1),
         nonmanifold_edges=int((t1["count"] > 2).sum()),
         misoriented_edges=t1["misoriented"],
         degenerate_facets=int((min_angles_deg(V1, F1) < 0.01).sum()),

@@ -5,7 +5,7 @@ figures (reference.score) are printed (pytest -s) and written to tests/artifacts
 Bounds, all relative to the exact answer, none hard-coded per case:
   * deviation both ways <= tolerance + the input's own tessellation error near the chain (+ the
     yardstick's own precision, reference.MEASURE);
-  * topology as the input's: boundary edges, no non-manifold / mis-oriented / degenerate facets, no
+  * topology as the input's: boundary loops (on the reference's free edges), no non-manifold / mis-oriented / degenerate facets, no
     self-intersection, orientation kept;
   * locality: input vertices and facets beyond reach * r are in the result bit for bit, and no facet is
     made entirely beyond the reach;
@@ -162,7 +162,10 @@ def test_deviation_both_ways(name, variant):
 @pytest.mark.parametrize("name,variant", runs("topology"))
 def test_topology_is_kept(name, variant):
     row = round_case(name, variant)
-    assert row["boundary_edges_out"] == row["boundary_edges_in"]
+    # The boundary (an open shell's edge) keeps its loops and lies on the reference's own free edges: where a
+    # round runs off the mesh's edge, its end profile becomes part of that edge, as in OCCT's fillet.
+    assert row["boundary_loops_out"] == row["boundary_loops_in"]
+    assert row["boundary_off_reference"] <= reference.allowed_deviation(row)
     assert (row["nonmanifold_edges"], row["misoriented_edges"], row["degenerate_facets"]) == (0, 0, 0)
     assert row["orientation_kept"] and not row["self_intersections"]
 

@@ -77,11 +77,63 @@ def test_two_convex_rounds_meet_at_their_mitre_and_the_input_is_kept(box):
     assert np.any(cell & (np.abs(pts[:, 0] - X - (pts[:, 1] - Y)) < f32) & (pts[:, 2] < Z - 0.5 * r))  # the mitre's curve
 
 
-def corner_of_box_mesh(element):
+def corner_of_box_mesh(element, square=True):
     """The part of MeshPart's `element` mm mesh of the box within 15 mm of the corner (X, Y, Z) (all three faces
-    there; float32 points as meshed), kept in tests/python/data: the whole mesh takes the mesher a minute."""
+    there; float32 points as meshed), kept in tests/python/data: the whole mesh takes the mesher a minute.
+    The crop's edge is ragged (whole facets); `square`: cut square to the three chains, 13.5 mm from the corner,
+    so that each chain runs off the mesh's edge across a plane square to it (a round ends only on such an edge)."""
     data = np.load(os.path.join(os.path.dirname(__file__), "data", f"box_corner_mesh{element}.npz"))
-    return meshconv.arrays_to_mesh(data["V"], data["F"])
+    V, F = data["V"], data["F"]
+    if square:
+        for axis, at in ((0, X - 13.5), (1, Y - 13.5), (2, Z - 13.5)):
+            V, F = clipped(V, F, axis, at)
+    return meshconv.arrays_to_mesh(V, F)
+
+
+def clipped(V, F, axis, at):
+    """The part of (V, F) where coordinate `axis` >= at: facets across that plane cut along it (a point on each
+    cut edge, made once), the unused points dropped."""
+    points, out, cut = [tuple(p) for p in V], [], {}
+
+    def on_plane(a, b):
+        if (min(a, b), max(a, b)) not in cut:
+            pa, pb = np.array(points[a]), np.array(points[b])
+            q = pa + (at - pa[axis]) / (pb[axis] - pa[axis]) * (pb - pa)
+            q[axis] = at
+            points.append(tuple(q))
+            cut[min(a, b), max(a, b)] = len(points) - 1
+        return cut[min(a, b), max(a, b)]
+
+    for f in F:
+        inside = [points[v][axis] >= at for v in f]
+        if all(inside):
+            out.append(list(f))
+        elif any(inside):
+            ring = []
+            for k in range(3):
+                if inside[k]:
+                    ring.append(f[k])
+                if inside[k] != inside[(k + 1) % 3]:
+                    ring.append(on_plane(f[k], f[(k + 1) % 3]))
+            out += [[ring[0], ring[k], ring[k + 1]] for k in range(1, len(ring) - 1)]
+    points, out = np.array(points), np.array(out)
+    used = np.unique(out)
+    index = np.full(len(points), -1)
+    index[used] = np.arange(len(used))
+    return points[used], index[out]
+
+
+@pytest.mark.parametrize("element", [1.0, 0.7])
+def test_chains_running_off_a_ragged_crop_edge_are_refused_naming_the_end(element):
+    """The crop's own edge (whole facets, up to 0.9 mm off the plane across each chain's end): the round's end
+    cannot lie on it; refused naming the end, the input intact (it used to slide boundary vertices off the edge)."""
+    mesh = corner_of_box_mesh(element, square=False)
+    before = mesh.Topology
+    seeds = [V(X - 7, Y, Z), V(X, Y - 7, Z), V(X, Y, Z - 7)]
+    with pytest.raises(MeshRound.RoundingError, match=r"runs off the mesh's edge at \(.*\), but that edge is not square to it") as err:
+        MeshRound.round_edges(mesh, seeds, 5.0)
+    assert err.value.code == "corner_not_blendable"
+    assert mesh.Topology == before
 
 
 @pytest.mark.parametrize("element, r", [(2.0, 3.0), (1.0, 5.0), (0.7, 5.0), (2.0, 5.999), (2.0, 9.999), (2.0, 13.999), (2.0, 17.999)])
@@ -101,7 +153,8 @@ def test_three_rounds_at_a_corner_meet_in_the_corner_ball(box, element, r):
     out = res.mesh
     V0, F0 = meshconv.mesh_to_arrays(mesh)
     V1, F1 = meshconv.mesh_to_arrays(out)
-    assert soundness.problems(V0, F0, V1, F1) == []  # the crops' own boundary stays as it was
+    ends = [((X - 13.5, Y, Z), 1.01 * r), ((X, Y - 13.5, Z), 1.01 * r), ((X, Y, Z - 13.5), 1.01 * r)]
+    assert soundness.problems(V0, F0, V1, F1, open_ends=ends) == []  # the crop's edge kept but for the end profiles
     centre = np.array([X - r, Y - r, Z - r])
     pts = np.array([[p.x, p.y, p.z] for p in out.Points])
     f32 = 2e-5  # a Mesh.Mesh keeps float32 coordinates: ~1e-5 mm at 100 mm
