@@ -316,13 +316,16 @@ inline std::string check_sound(const SoundnessInput& s) {
     auto it = in_at.find(point_key(Vo, v));
     if (it != in_at.end()) to_in[v] = it->second;
   }
-  auto tri_key = [](int a, int b, int c) {
-    std::array<int, 3> t{a, b, c};
+  // A facet is known by its corners' positions (an input with coincident vertices keeps its facets
+  // however the result numbers them).
+  using TriKey = std::array<std::array<std::uint64_t, 3>, 3>;
+  auto tri_key = [](const Points& V, int a, int b, int c) {
+    TriKey t{point_key(V, a), point_key(V, b), point_key(V, c)};
     std::sort(t.begin(), t.end());
     return t;
   };
-  std::map<std::array<int, 3>, int> in_facets;
-  for (int f = 0; f < Fi.rows(); ++f) in_facets.emplace(tri_key(Fi(f, 0), Fi(f, 1), Fi(f, 2)), f);
+  std::map<TriKey, int> in_facets;
+  for (int f = 0; f < Fi.rows(); ++f) in_facets.emplace(tri_key(Vi, Fi(f, 0), Fi(f, 1), Fi(f, 2)), f);
   const auto uses_in = edge_uses(Fi), uses_out = edge_uses(Fo);
   // Input facets beside a misoriented input edge: the result may keep their orientation.
   std::unordered_set<int> in_misoriented;
@@ -331,9 +334,8 @@ inline std::string check_sound(const SoundnessInput& s) {
   std::vector<int> kept(Fo.rows(), -1);  // output facet -> the input facet it is (by positions)
   std::vector<int> fresh;
   for (int f = 0; f < Fo.rows(); ++f) {
-    const int a = to_in[Fo(f, 0)], b = to_in[Fo(f, 1)], c = to_in[Fo(f, 2)];
-    if (a >= 0 && b >= 0 && c >= 0) {
-      auto it = in_facets.find(tri_key(a, b, c));
+    if (to_in[Fo(f, 0)] >= 0 && to_in[Fo(f, 1)] >= 0 && to_in[Fo(f, 2)] >= 0) {
+      auto it = in_facets.find(tri_key(Vo, Fo(f, 0), Fo(f, 1), Fo(f, 2)));
       if (it != in_facets.end()) { kept[f] = it->second; continue; }
     }
     fresh.push_back(f);
