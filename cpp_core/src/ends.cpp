@@ -456,12 +456,11 @@ std::pair<double, Vec3> boundary_off_plane(const MeshTopology& mesh, int v, cons
     for (int prev = v, cur = w0, steps = 0; cur >= 0 && cur != v && steps < 100000; ++steps) {
       const Vec3 a = mesh.point(prev), b = mesh.point(cur);
       const bool leaves = (b - p).norm() > within;
-      double lo = 0, hi = 1;  // (where it leaves: the edge's point at distance `within` from p)
-      for (int it = 0; leaves && it < 50; ++it) {
-        const double mid = 0.5 * (lo + hi);
-        ((a + mid * (b - a) - p).norm() > within ? hi : lo) = mid;
-      }
-      const Vec3 q = leaves ? Vec3(a + lo * (b - a)) : b;
+      // Where it leaves: the edge's point at distance `within` from p (a lies inside the sphere, b outside).
+      const Vec3 d = b - a, f = a - p;
+      const double fd = f.dot(d), dd = d.squaredNorm();
+      const double t_out = (-fd + std::sqrt(std::max(fd * fd - dd * (f.squaredNorm() - within * within), 0.0))) / dd;
+      const Vec3 q = leaves ? Vec3(a + std::clamp(t_out, 0.0, 1.0) * d) : b;
       if (std::abs((q - p).dot(t)) > worst.first) worst = {std::abs((q - p).dot(t)), q};
       if (leaves) break;
       const int next = next_on_boundary(mesh, prev, cur);
