@@ -5,6 +5,7 @@ import time
 
 import FreeCAD
 import FreeCADGui
+from PySide import QtGui
 
 from gui_support import StatusSampler, press_task_button, redraw_seconds, screenshot, step, wait_until
 
@@ -24,6 +25,11 @@ def check_progress_indicator():
     LONGEST_RUN_S have passed: one slow repaint on a loaded machine cannot end the run before the bar's
     delay, and a bar that never shows still fails the test."""
     from MeshRound import progress
+    # nothing left over from the steps before may write the status bar meanwhile: no preselection under
+    # the pointer, no queued status message
+    FreeCADGui.Selection.clearPreselection()
+    QtGui.QCursor.setPos(0, 0)
+    FreeCADGui.updateGui()
     sampler = StatusSampler()
     started = time.perf_counter()
 
@@ -35,6 +41,7 @@ def check_progress_indicator():
             time.sleep(0.05)
 
     with progress.busy("Rounding edges of a long chain"):
+        sampler.sample()  # what the status bar shows as the run starts
         progress.wait_for(long_engine_call)
     seconds = time.perf_counter() - started
     sampler.stop()

@@ -114,10 +114,10 @@ class StatusSampler:
         bars = FreeCADGui.getMainWindow().statusBar().findChildren(QtGui.QProgressBar)
         self._bars = bars
         self._timer = QtCore.QTimer()
-        self._timer.timeout.connect(self._sample)
+        self._timer.timeout.connect(self.sample)
         self._timer.start(50)
 
-    def _sample(self):
+    def sample(self):
         status = FreeCADGui.getMainWindow().statusBar()
         texts = [status.currentMessage()] + [w.text() for w in status.findChildren(QtGui.QLabel)]
         visible = any(b.isVisible() for b in self._bars)
