@@ -16,7 +16,11 @@ namespace {
 
 constexpr double kCoplanarDeg = 2;       // the end face's facets at the vertex agree within this
 constexpr double kMinCrossing = 0.3;     // |cos| between the chain and the plane's normal, at least
-constexpr double kSetbackSlack = 0.02;   // x r added to a nonzero setback (the last ball clear of the wall)
+constexpr double kMinSpan = 0.17;        // sin of the angle two edges must make to span a plane (10 deg)
+// x r added to a nonzero setback: the last ball clear of the end's plane, by half the round's row across at the
+// default tolerance r / 100 (0.2 r): where the plane is nearest the last ball (a plane slanted across the
+// chain) the facets between the ball's profile and the end profile are then not slivers.
+constexpr double kSetbackSlack = 0.1;
 
 // The share of a chain its two ends' setbacks may take: the rest, the balls' own stretch, must hold
 // its profile stations. At a sphere corner the rounds' ends are measured on balls that stand clear of the
@@ -29,8 +33,38 @@ constexpr double kSphereMeasureInset = 1e-3;
 
 }  // namespace
 
+// The directions of the mesh's boundary edges from vertex v (unit).
+std::vector<Vec3> boundary_directions(const MeshTopology& mesh, int v) {
+  std::vector<Vec3> away;
+  for (int w : mesh.vertex_neighbours(v))
+    if (mesh.edge_facet_count(v, w) == 1 && (mesh.point(w) - mesh.point(v)).norm() > 0)
+      away.push_back((mesh.point(w) - mesh.point(v)).normalized());
+  return away;
+}
+
+EndCut open_end_cut(const MeshTopology& mesh, const SharpChain& chain, bool at_start) {
+  EndCut cut;
+  if (chain.closed || (at_start ? chain.start_end : chain.end_end) != ChainEnd::Boundary) return cut;
+  const int v = at_start ? chain.vertices.front() : chain.vertices.back();
+  const Vec3 p = mesh.point(v);
+  const Vec3 out = at_start ? Vec3(-chain.tangent_at(0)) : chain.tangent_at(chain.length);
+  const std::vector<Vec3> away = boundary_directions(mesh, v);
+  Vec3 n = out;  // the plane across the chain: where the edge is not two lines, or they are nearly one line
+  if (away.size() == 2 && away[0].cross(away[1]).norm() > kMinSpan) n = away[0].cross(away[1]).normalized();
+  else if (away.size() == 2) {  // nearly one line d: the plane through it nearest the plane across the chain
+    const Vec3 d = (away[0] - away[1]).normalized();
+    if ((out - d * d.dot(out)).norm() > 0) n = (out - d * d.dot(out)).normalized();
+  }
+  cut.active = true;
+  cut.point = p;
+  cut.normal = out.dot(n) >= 0 ? n : Vec3(-n);
+  cut.along = out;
+  return cut;
+}
+
 EndCut end_face_cut(const MeshTopology& mesh, const SharpChain& chain, const BaseMeshes& base, bool at_start) {
   EndCut cut;
+  if (!chain.closed && (at_start ? chain.start_end : chain.end_end) == ChainEnd::Boundary) return open_end_cut(mesh, chain, at_start);
   if (chain.closed || (at_start ? chain.start_end : chain.end_end) != ChainEnd::Junction) return cut;
   const int v = at_start ? chain.vertices.front() : chain.vertices.back();
   // The end face: the facets at v on neither side of the chain.
@@ -446,13 +480,22 @@ int next_on_boundary(const MeshTopology& mesh, int prev, int cur) {
   return next;
 }
 
-// How far the boundary through v stands off the plane (p, unit normal t) within `within` of p, followed both ways
-// from v (where an edge leaves that sphere, its point on it): the largest distance and where.
-std::pair<double, Vec3> boundary_off_plane(const MeshTopology& mesh, int v, const Vec3& t, double within) {
-  const Vec3 p = mesh.point(v);
-  std::pair<double, Vec3> worst{0.0, p};
+// How far the boundary through v stands off the plane `cut` (through v), followed both ways from v out to where
+// the end profile's contacts are: `reach` from the chain (along `cut.along`) in the faces, so reach / sin(a) along
+// a boundary at angle a to the chain (where an edge leaves that sphere about v, its point on it). The largest
+// distance and where, and the longest way followed.
+struct OffPlane {
+  double off = 0, within = 0;
+  Vec3 at;
+};
+OffPlane boundary_off_plane(const MeshTopology& mesh, int v, const EndCut& cut, double reach) {
+  const Vec3 p = mesh.point(v), t = cut.normal;
+  OffPlane worst{0.0, 0.0, p};
   for (int w0 : mesh.vertex_neighbours(v)) {
-    if (mesh.edge_facet_count(v, w0) != 1) continue;
+    if (mesh.edge_facet_count(v, w0) != 1 || mesh.point(w0) == p) continue;
+    const double sine = (mesh.point(w0) - p).normalized().cross(cut.along).norm();
+    const double within = reach / std::max(sine, kMinCrossing);
+    worst.within = std::max(worst.within, within);
     for (int prev = v, cur = w0, steps = 0; cur >= 0 && cur != v && steps < 100000; ++steps) {
       const Vec3 a = mesh.point(prev), b = mesh.point(cur);
       const bool leaves = (b - p).norm() > within;
@@ -461,7 +504,7 @@ std::pair<double, Vec3> boundary_off_plane(const MeshTopology& mesh, int v, cons
       const double fd = f.dot(d), dd = d.squaredNorm();
       const double t_out = (-fd + std::sqrt(std::max(fd * fd - dd * (f.squaredNorm() - within * within), 0.0))) / dd;
       const Vec3 q = leaves ? Vec3(a + std::clamp(t_out, 0.0, 1.0) * d) : b;
-      if (std::abs((q - p).dot(t)) > worst.first) worst = {std::abs((q - p).dot(t)), q};
+      if (std::abs((q - p).dot(t)) > worst.off) worst.off = std::abs((q - p).dot(t)), worst.at = q;
       if (leaves) break;
       const int next = next_on_boundary(mesh, prev, cur);
       prev = cur, cur = next;
@@ -495,20 +538,25 @@ void check_open_ends(const MeshTopology& mesh, const SharpChain& chain, const Ra
   for (int end = 0; end < 2; ++end) {
     if ((end ? chain.end_end : chain.start_end) != ChainEnd::Boundary) continue;
     const int v = end ? chain.vertices.back() : chain.vertices.front();
+    const EndCut cut = open_end_cut(mesh, chain, end == 0);
+    const Vec3 p = mesh.point(v);
+    const double s = end ? chain.length : 0.0, r = law.at(s);
+    if (std::abs(cut.along.dot(cut.normal)) < kMinCrossing)
+      throw RoundingError(ErrorCode::CornerNotBlendable,
+                          "the chain runs off the mesh's edge at " + format_point(p) + " along that edge, nearly: a round cannot end "
+                          "there. Trim the mesh across the chain there, or round it before it is cut");
     // The end profile spans the faces from the chain out to its contacts, r tan(turn / 2) from the edge.
     const int e = end ? chain.num_edges() - 1 : 0;
     const double turn = std::acos(std::clamp(mesh.facet_normal(chain.facet_a[e]).dot(mesh.facet_normal(chain.facet_b[e])), -1.0, 1.0));
-    const double s = end ? chain.length : 0.0, r = law.at(s), within = 1.001 * r * std::tan(0.5 * turn);
-    const Vec3 p = mesh.point(v);
-    const auto [off, at] = boundary_off_plane(mesh, v, chain.tangent_at(s), within);
+    const auto [off, within, at] = boundary_off_plane(mesh, v, cut, 1.001 * r * std::tan(0.5 * turn));
     if (off <= tolerance + on_plane_slack(within, p.cwiseAbs().maxCoeff())) continue;
     if (short_loop_length(mesh, v, kHoleLoop * r) <= kHoleLoop * r)
       throw InputFlaw("the mesh is open (a hole in it) at the end of the chain at " + format_point(p) + "; fill the hole first", p);
     throw RoundingError(ErrorCode::CornerNotBlendable,
-                        "the chain runs off the mesh's edge at " + format_point(p) + ", but that edge is not square to it: at " +
-                            format_point(at) + " it stands " + format_number(off) + " off the plane across the chain's end "
-                            "(more than the tolerance " + format_number(tolerance) + "); a round ends only on a mesh edge in that "
-                            "plane. Trim the mesh square to the chain there, or round it before it is cut");
+                        "the chain runs off the mesh's edge at " + format_point(p) + ", but that edge is not one plane there: at " +
+                            format_point(at) + " it stands " + format_number(off) + " off the plane of its first edges at the "
+                            "chain's end (more than the tolerance " + format_number(tolerance) + "); a round ends only on a mesh "
+                            "edge in one plane. Trim the mesh straight across the chain there, or round it before it is cut");
   }
 }
 

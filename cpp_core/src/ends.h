@@ -35,10 +35,16 @@ struct EndPlan {
 };
 EndPlan plan_ends(const SpineContext& ctx, const RadiusLaw& law, const NetworkPart& net);
 
-// A chain that runs off the mesh's edge (ChainEnd::Boundary) ends on the plane across the chain's end vertex,
-// and its end profile becomes part of the mesh's edge there. That is the answer only where the mesh's edge
-// near the end (out to the end profile's contacts) lies in that plane within `tolerance`; elsewhere -- a
-// ragged crop, an edge slanted across the chain -- the call is refused (corner_not_blendable) naming the end.
+// A chain that runs off the mesh's edge (ChainEnd::Boundary) ends, as OCCT's fillet of the open shell does,
+// on the plane of the mesh's edge there: the plane through the chain's end vertex spanned by its two
+// boundary edges (a crop square to the chain or slanted across it; the plane across the chain where those
+// edges are nearly one line). Its end profile is cut by that plane and becomes part of the mesh's edge.
+// Inactive for other ends. The one rule plan_ends, check_open_ends and the output check (guard.h) use.
+EndCut open_end_cut(const MeshTopology& mesh, const SharpChain& chain, bool at_start);
+
+// That end is made only where the mesh's edge near it (out to the end profile's contacts) lies in that
+// plane within `tolerance`; elsewhere -- a ragged crop, a crop bent at the chain -- and where the plane runs
+// nearly along the chain the call is refused (corner_not_blendable) naming the end.
 void check_open_ends(const MeshTopology& mesh, const SharpChain& chain, const RadiusLaw& law, double tolerance);
 
 // Where a side's base mesh goes on past a capped end's plane (a pocket's top face around its corner),

@@ -1,5 +1,7 @@
 #include "guard.h"
 
+#include "ends.h"
+
 #include <algorithm>
 #include <cstdio>
 #include <cstdlib>
@@ -77,16 +79,18 @@ void check_new_flaws(const MeshEdit& edit, const std::vector<std::uint64_t>& was
 
 // The boundary edges a rounding may make: pieces of an input boundary edge (split where a trim line or a
 // refinement point falls on it), and the end profile of a round the mesh boundary stops
-// (ChainEnd::Boundary): there the profile, in the plane across the chain's end, becomes the mesh's edge.
+// (ChainEnd::Boundary): there the profile, in the plane of the mesh's edge at the chain's end (ends.h
+// open_end_cut), becomes the mesh's edge.
 // `slack`: how far off the input edge or the end plane (beyond the tolerance) a point may lie.
 class BoundaryRule {
  public:
   BoundaryRule(const MeshEdit& edit, const std::vector<std::uint64_t>& was, const SharpChain& chain, double reach,
                double tolerance, double slack)
       : edit_(edit), was_(was), reach_(reach), tolerance_(tolerance), slack_(slack) {
-    if (chain.closed) return;
-    if (chain.start_end == ChainEnd::Boundary) ends_.push_back({chain.points.front(), chain.tangent_at(0)});
-    if (chain.end_end == ChainEnd::Boundary) ends_.push_back({chain.points.back(), chain.tangent_at(chain.length)});
+    for (bool at_start : {true, false}) {
+      const EndCut cut = open_end_cut(edit.input, chain, at_start);
+      if (cut.active) ends_.push_back({cut.point, cut.normal});
+    }
   }
 
   bool allows(std::uint64_t key) const {
@@ -114,9 +118,9 @@ class BoundaryRule {
 
  private:
   struct End {
-    Vec3 point, tangent;
+    Vec3 point, normal;
     bool holds(const Vec3& x, double reach, double off) const {
-      return (x - point).norm() <= reach && std::abs((x - point).dot(tangent)) <= off;
+      return (x - point).norm() <= reach && std::abs((x - point).dot(normal)) <= off;
     }
   };
   Vec3 input_point(int v) const { return edit_.input.point(v); }

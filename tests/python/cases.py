@@ -193,19 +193,30 @@ def box_oblique_end():
     return s, edges_where(s, lambda p: abs(p.y - 40) < TOL and abs(p.z - 30) < TOL)
 
 
-def open_sheet(end_deg=0.0):
+def open_sheet(crop_deg=None):
     """A shoulder running off the mesh's edge: the top and back faces of a 60 x 40 x 30 box only (an open
-    shell, as a die's working surface is), their shared edge rounded. With `end_deg`, the top face's end at
-    x = 60 is cut at that angle in plan (the back face's end stays square): OCCT ends the round on the
-    plane across the chain's end and trims the top face where its slanted edge meets the contact line."""
+    shell, as a die's working surface is), their shared edge rounded. With `crop_deg` = (top, back), the
+    sheet's end at x = 60 is cut by a plane through the chain's end slanted across it: in plan, the top face's
+    end edge turns back by `top` degrees from square (an acute corner of that face); in elevation, the back
+    face's end edge leans out by `back` degrees (an obtuse corner: that face runs on past the end). OCCT ends
+    the round on that plane (an ellipse)."""
     def build():
-        box = Part.makeBox(60, 40, 30)
+        box = Part.makeBox(60 if crop_deg is None else 100, 40, 30)
         shell = Part.makeShell([f for f in box.Faces if abs(f.CenterOfMass.z - 30) < TOL or abs(f.CenterOfMass.y - 40) < TOL])
-        if end_deg:
-            cutter = Part.makeBox(100, 100, 100, V(60, -50, -20)).rotated(V(60, 40, 0), V(0, 0, 1), -end_deg)
-            shell = shell.cut(cutter).Shells[0]
+        if crop_deg is not None:
+            shell = cropped(shell, V(60, 40, 30), crop_deg)
         return shell, edges_where(shell, lambda p: abs(p.y - 40) < TOL and abs(p.z - 30) < TOL)
     return build
+
+
+def cropped(shell, corner, crop_deg):
+    """The part of `shell` (a top face, normal +z, and a back face, normal +y, meeting along x at `corner`)
+    before the plane through `corner` slanted by crop_deg = (top, back) degrees from square to x: the top
+    face's cut edge turns back in plan (acute), the back face's leans out in elevation (obtuse)."""
+    top, back = (math.tan(math.radians(a)) for a in crop_deg)
+    beyond = Part.makeBox(4000, 4000, 4000, V(-2000, -2000, 0))
+    beyond.Placement = FreeCAD.Placement(corner, FreeCAD.Rotation(V(0, 0, 1), V(1, -top, back).normalize()))
+    return shell.cut(beyond).Shells[0]
 
 
 def open_prism(builder):
@@ -521,6 +532,7 @@ SPECS = {
     "pocket_rim_walls": (pocket_rim_walls(), 2.0, None),
     "pocket_rim_walls_draft": (pocket_rim_walls(10.0), 2.0, None),
     "open_sheet": (open_sheet(), 5.0, None),
+    "open_sheet_slanted": (open_sheet((30.0, 20.0)), 5.0, None),
     "lchannel_open": (open_prism(lchannel), 4.0, None),
     "box_corner": (box_corner, 5.0, None),
     "box_top_corner": (box_top_corner, 5.0, None),

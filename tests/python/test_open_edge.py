@@ -18,13 +18,13 @@ SEED = (50.0, 60.0, 40.0)
 ENDS = [np.array([0.0, 60.0, 40.0]), np.array([100.0, 60.0, 40.0])]
 
 
-def sheet_arrays(max_length, end_deg=0.0):
-    """The top and back faces of a 100 x 60 x 40 box, meshed (the chain: their shared edge, y = 60, z = 40)."""
-    box = cases.Part.makeBox(100, 60, 40)
+def sheet_arrays(max_length, crop_deg=None):
+    """The top and back faces of a 100 x 60 x 40 box, meshed (the chain: their shared edge, y = 60, z = 40). With
+    crop_deg = (top, back), its end at x = 100 is cut slanted across the chain (cases.cropped)."""
+    box = cases.Part.makeBox(100 if crop_deg is None else 160, 60, 40)
     shell = cases.Part.makeShell([f for f in box.Faces if abs(f.CenterOfMass.z - 40) < 1e-9 or abs(f.CenterOfMass.y - 60) < 1e-9])
-    if end_deg:  # the top face's end at x = 100 slanted in plan (the back face's end stays square)
-        cutter = cases.Part.makeBox(200, 200, 200, cases.V(100, -100, -50)).rotated(cases.V(100, 60, 0), cases.V(0, 0, 1), -end_deg)
-        shell = shell.cut(cutter).Shells[0]
+    if crop_deg is not None:
+        shell = cases.cropped(shell, cases.V(100, 60, 40), crop_deg)
     mesh = cases.mesh_of(shell, MaxLength=max_length)
     V = np.array([[p.x, p.y, p.z] for p in mesh.Topology[0]])
     return V, np.array(mesh.Topology[1])
@@ -61,18 +61,68 @@ def test_a_radius_over_the_back_face_is_refused_at_the_mesh_boundary():
     assert np.array_equal(V, V0) and np.array_equal(F, F0)
 
 
-@pytest.mark.parametrize("end_deg", [30.0, 60.0])
-def test_an_end_slanted_across_the_contact_line_is_refused_naming_the_boundary(end_deg):
-    """OCCT ends such a round on the plane across the chain's end and leaves the piece of it beyond the slanted
-    top face's edge open; MeshRound's balls need both faces, so it refuses where the ball leaves the top face."""
-    V, F = sheet_arrays(2.0, end_deg)
+def end_profile_points(V1, F1, radius, plane_normal):
+    """The result's boundary points on the round's end profile at x ~ 100, in the quarter between the two contact
+    lines (y >= 60 - r, z >= 40 - r), and their distance to the crop plane through the chain's end (100, 60, 40)."""
+    table = soundness.edge_table(F1)
+    P = V1[np.unique(table["edges"][table["count"] == 1])]
+    P = P[(np.abs(P[:, 0] - 100) < 3 * radius) & (P[:, 1] > 60 - radius - 1e-6) & (P[:, 2] > 40 - radius - 1e-6)]
+    return P, (P - np.array([100.0, 60.0, 40.0])) @ plane_normal
+
+
+@pytest.mark.parametrize("max_length", [2.0, 5.0])
+@pytest.mark.parametrize("crop_deg,radius", [((30.0, 0.0), 5.0), ((60.0, 0.0), 5.0), ((0.0, 40.0), 20.0),
+                                             ((30.0, 20.0), 5.0), ((30.0, 20.0), 20.0), ((60.0, 0.0), 0.5)])
+def test_an_end_slanted_across_the_chain_rounds_to_the_plane_of_the_mesh_edge(crop_deg, radius, max_length):
+    """The mesh's edge at the chain's end is cut slanted (the top face acute, the back face obtuse, or both): as
+    OCCT's fillet of the open shell, the round runs on to that plane and its end profile is the round's section by
+    it (an ellipse), which becomes the mesh's edge (test_accuracy's open_sheet_slanted compares with OCCT)."""
+    V, F = sheet_arrays(max_length, crop_deg)
+    res = api.round_arrays(V, F, SEED, radius)
+    V1, F1 = np.asarray(res.vertices), np.asarray(res.triangles)
+    assert soundness.problems(V, F, V1, F1, open_ends=[(e, 3 * radius) for e in ENDS]) == []
+    top, back = (math.tan(math.radians(a)) for a in crop_deg)
+    normal = np.array([1.0, -top, back]) / math.sqrt(1 + top * top + back * back)
+    P, off = end_profile_points(V1, F1, radius, normal)
+    assert len(P) >= 3
+    assert np.abs(off).max() <= 1e-6 * 100  # on the crop plane
+    on_round = np.hypot(P[:, 1] - (60 - radius), P[:, 2] - (40 - radius))  # on the round's cylinder
+    assert np.abs(on_round - radius).max() <= radius / 100 + 1e-6 * 100
+    # reaching its contacts on both faces: the ellipse's ends, where the plane meets the two contact lines
+    assert P[:, 1].min() < 60 - radius + 1e-6 * 100 and P[:, 2].min() < 40 - radius + 1e-6 * 100
+
+
+def test_an_end_cut_nearly_along_the_chain_is_refused_naming_it():
+    """A crop 75 degrees from square: the plane would cut the round over a length of 4 r; refused, input intact."""
+    V, F = sheet_arrays(2.0, (75.0, 0.0))
     V0, F0 = V.copy(), F.copy()
-    with pytest.raises(MeshRound.RoundingError, match=r"the mesh boundary at \(") as err:
+    with pytest.raises(MeshRound.RoundingError, match=r"runs off the mesh's edge at \(100, 60, 40\) along that edge") as err:
         api.round_arrays(V, F, SEED, 5.0)
-    assert err.value.code == "radius_too_large"
-    where = [float(c) for c in str(err.value).rsplit("(", 1)[1].split(")")[0].split(",")]
-    assert where[0] > 100 - 5 * math.tan(math.radians(end_deg)) - 1 and abs(where[2] - 40) < 1e-6
+    assert err.value.code == "corner_not_blendable"
     assert np.array_equal(V, V0) and np.array_equal(F, F0)
+
+
+def test_an_end_whose_cut_bends_within_the_round_is_refused_naming_where():
+    """The top face's end cut at 30 degrees from the chain's end for 3 mm across, then square: the mesh's edge is
+    not one plane out to the end profile's contacts (5 mm across at r 5); refused corner_not_blendable naming
+    the place, input intact. (At r 2 its contacts lie on the first plane: it rounds.)"""
+    V_ = cases.V
+    bend = V_(100 - 3 * math.tan(math.radians(30)), 57, 40)
+    top = cases.Part.Face(cases.Part.makePolygon([V_(0, 0, 40), V_(bend.x, 0, 40), bend, V_(100, 60, 40), V_(0, 60, 40), V_(0, 0, 40)]))
+    back = cases.Part.Face(cases.Part.makePolygon([V_(0, 60, 0), V_(100, 60, 0), V_(100, 60, 40), V_(0, 60, 40), V_(0, 60, 0)]))
+    shell = cases.Part.makeShell([top, back])
+    shell.sewShape(1e-6)
+    mesh = cases.mesh_of(shell, MaxLength=1.0)
+    V = np.array([[p.x, p.y, p.z] for p in mesh.Topology[0]])
+    F = np.array(mesh.Topology[1])
+    V0, F0 = V.copy(), F.copy()
+    with pytest.raises(MeshRound.RoundingError, match=r"is not one plane there: at \(") as err:
+        api.round_arrays(V, F, SEED, 5.0)
+    assert err.value.code == "corner_not_blendable"
+    assert np.array_equal(V, V0) and np.array_equal(F, F0)
+    res = api.round_arrays(V, F, SEED, 2.0)
+    V1, F1 = np.asarray(res.vertices), np.asarray(res.triangles)
+    assert soundness.problems(V, F, V1, F1, open_ends=[(e, 3 * 2.0) for e in ENDS]) == []
 
 
 # ------------------------------------------------------------------ a die's working surface, open at its edge
