@@ -21,31 +21,30 @@ EndCut end_face_cut(const MeshTopology& mesh, const SharpChain& chain, const Bas
 // How far back from the end the last ball must sit so that its whole profile, carried along the chain,
 // reaches the plane (none of it starts past the plane): 0 for a plane square to the chain's end.
 // `inside`: a ball `to_end` short of the end (the chain's end is straight: balls there are translates).
-double end_cut_setback(const ProfileStation& inside, double to_end, const EndCut& cut);
+// `open`: the plane of a mesh edge the chain runs off (open_end_cut), where the ball stands further back.
+double end_cut_setback(const ProfileStation& inside, double to_end, const EndCut& cut, bool open = false);
 
 // How a chain's round ends: each open end's cut -- its end face's plane (end_face_cut), or the plane of a
 // corner with another picked chain (network.h) -- and how far before it the balls stop (the setback; the
 // last ball is carried on along the chain onto the plane). Refuses a ball there that does not fit
 // (radius_too_large), and setbacks that leave too little of the chain for its balls (radius_too_large too:
-// a smaller radius has shorter setbacks).
+// a smaller radius has shorter setbacks). An end that runs off the mesh's edge is checked there (open_end_cut).
 // The one rule round_edges rounds by and max_radius measures by.
 struct EndPlan {
   EndCut cut[2];
   double setback[2] = {0, 0};
 };
-EndPlan plan_ends(const SpineContext& ctx, const RadiusLaw& law, const NetworkPart& net);
+EndPlan plan_ends(const SpineContext& ctx, const RadiusLaw& law, const NetworkPart& net, double tolerance);
 
 // A chain that runs off the mesh's edge (ChainEnd::Boundary) ends, as OCCT's fillet of the open shell does,
 // on the plane of the mesh's edge there: the plane through the chain's end vertex spanned by its two
 // boundary edges (a crop square to the chain or slanted across it; the plane across the chain where those
 // edges are nearly one line). Its end profile is cut by that plane and becomes part of the mesh's edge.
-// Inactive for other ends. The one rule plan_ends, check_open_ends and the output check (guard.h) use.
+// Inactive for other ends. The one rule plan_ends and the output check (guard.h) use. plan_ends refuses such
+// an end, once a ball fits there, where the mesh's edge is not in that plane within `tolerance` out to the end
+// profile's contacts (a ragged or bent crop) or the plane runs nearly along the chain (corner_not_blendable
+// naming the end), or where the boundary there is a hole's (non_manifold_input).
 EndCut open_end_cut(const MeshTopology& mesh, const SharpChain& chain, bool at_start);
-
-// That end is made only where the mesh's edge near it (out to the end profile's contacts) lies in that
-// plane within `tolerance`; elsewhere -- a ragged crop, a crop bent at the chain -- and where the plane runs
-// nearly along the chain the call is refused (corner_not_blendable) naming the end.
-void check_open_ends(const MeshTopology& mesh, const SharpChain& chain, const RadiusLaw& law, double tolerance);
 
 // Where a side's base mesh goes on past a capped end's plane (a pocket's top face around its corner),
 // the band's corner there must run along mesh edges: the segment from the chain's end vertex to the

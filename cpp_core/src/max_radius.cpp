@@ -108,7 +108,7 @@ struct Ends {
         const NetworkPart net = corners(radius);
         const bool at[2] = {corner_at(net, ctx.chain.points.front()) != nullptr, corner_at(net, ctx.chain.points.back()) != nullptr};
         corner_end = at[0] != at[1] ? (at[0] ? 0 : 1) : -1;
-        plan = plan_ends(ctx, RadiusLaw(constant, ctx.chain, 0), net);
+        plan = plan_ends(ctx, RadiusLaw(constant, ctx.chain, 0), net, constant.effective_tolerance());
         fits = true;
       } catch (const RoundingError& e) {
         if (e.code != ErrorCode::RadiusTooLarge && e.code != ErrorCode::CornerNotBlendable && e.code != ErrorCode::BeyondReach) throw;

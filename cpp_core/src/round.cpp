@@ -119,7 +119,7 @@ std::vector<ProfileStation> end_cut_profiles(const SpineContext& ctx, const Radi
                                              const NetworkPart& net, RoundingSurface& surface, double* loft_deviation) {
   const SharpChain& chain = ctx.chain;
   const double L = chain.length;
-  const EndPlan ends = plan_ends(ctx, law, net);
+  const EndPlan ends = plan_ends(ctx, law, net, tolerance);
   const EndCut* cut = ends.cut;
   const double* setback = ends.setback;
   std::vector<ProfileStation> st = sample_profiles(ctx, law, tolerance, max_new_facets, setback[0], L - setback[1], surface, loft_deviation);
@@ -235,7 +235,6 @@ RoundedChain round_one_chain(const MeshTopology& mesh, const ChainSeed& seed, co
   RoundingSurface surface;
   RoundedChain out;
   const std::vector<ProfileStation> stations = end_cut_profiles(ctx, law, tol, opt.max_new_facets, net, surface, &out.report.surface_deviation);
-  check_open_ends(mesh, chain, law, tol);  // (after the balls: one that does not fit is radius_too_large)
   timer.done("surface");
   if (!split) {  // a base mesh going on past an end face's plane: split along the band's corner, round that
     MeshDelta split_delta;

@@ -130,7 +130,7 @@ def test_chains_running_off_a_ragged_crop_edge_are_refused_naming_the_end(elemen
     mesh = corner_of_box_mesh(element, square=False)
     before = mesh.Topology
     seeds = [V(X - 7, Y, Z), V(X, Y - 7, Z), V(X, Y, Z - 7)]
-    with pytest.raises(MeshRound.RoundingError, match=r"runs off the mesh's edge at \(.*\), but that edge is not square to it") as err:
+    with pytest.raises(MeshRound.RoundingError, match=r"runs off the mesh's edge at \(.*\), but that edge is not one plane there") as err:
         MeshRound.round_edges(mesh, seeds, 5.0)
     assert err.value.code == "corner_not_blendable"
     assert mesh.Topology == before
