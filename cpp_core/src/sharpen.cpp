@@ -264,7 +264,12 @@ SharpChain corner_chain(const RoundStrip& strip) {
   chain.points = {strip.corner + strip.s_lo * strip.axis, strip.corner + strip.s_hi * strip.axis};
   chain.arc_length = {0.0, strip.s_hi - strip.s_lo};
   chain.length = strip.s_hi - strip.s_lo;
-  if (strip.curved) {  // the stations' corner points between the ends
+  if (strip.closed) {  // the stations' corner points all around
+    chain.closed = true;
+    chain.points = strip.line;
+    chain.arc_length = strip.line_s;
+    chain.length = strip.loop_length;
+  } else if (strip.curved) {  // the stations' corner points between the ends
     chain.points = {strip.point_at(strip.s_lo)};
     for (size_t i = 0; i < strip.line.size(); ++i)
       if (strip.line_s[i] > strip.s_lo && strip.line_s[i] < strip.s_hi) chain.points.push_back(strip.line[i]);

@@ -386,11 +386,19 @@ double RoundStrip::param(const Vec3& p) const {
   size_t best = 0;
   for (size_t i = 1; i < line.size(); ++i)
     if ((line[i] - p).squaredNorm() < (line[best] - p).squaredNorm()) best = i;
-  return line_s[best] + stations[best].axis.dot(p - line[best]);
+  const double s = line_s[best] + stations[best].axis.dot(p - line[best]);
+  return closed ? s - loop_length * std::floor(s / loop_length) : s;
 }
 
 Vec3 RoundStrip::point_at(double s) const {
   if (!curved) return corner + s * axis;
+  if (closed) {
+    s -= loop_length * std::floor(s / loop_length);
+    if (s >= line_s.back()) {  // on the closing segment
+      const double w = (s - line_s.back()) / std::max(loop_length - line_s.back(), 1e-300);
+      return (1 - w) * line.back() + w * line.front();
+    }
+  }
   if (s <= line_s.front()) return line.front() + (s - line_s.front()) * stations.front().axis;
   if (s >= line_s.back()) return line.back() + (s - line_s.back()) * stations.back().axis;
   const size_t j = std::upper_bound(line_s.begin(), line_s.end(), s) - line_s.begin();

@@ -69,11 +69,15 @@ struct RoundStrip : StripFrame {
   std::vector<double> line_s;                  // ... and their arc length
   std::vector<StripFrame> stations;            // ... and frame
   StripFrame end_frame[2];                     // curved: the frame at each end
+  bool closed = false;                         // curved: all around a loop (no end); the line closes on itself
+  double loop_length = 0;                      // closed: the line's length, the closing segment included
 
   const StripFrame& frame(int v) const { return curved ? frames.at(v) : *this; }
-  // Position along the corner line (its arc length for a curved strip: that of the nearest station).
+  // Position along the corner line (its arc length for a curved strip: that of the nearest station; in
+  // [0, loop_length) for a closed one).
   double param(const Vec3& p) const;
-  // The corner line's point at position s (a curved strip's: on its polyline, extended at the ends).
+  // The corner line's point at position s (a curved strip's: on its polyline, extended at the ends; a
+  // closed one's wrapped).
   Vec3 point_at(double s) const;
 };
 

@@ -15,10 +15,32 @@ namespace meshround::strip_detail {
 // direction; each strip vertex takes the frame of its nearest station, its corner point moved into its
 // own section. The corner line is the stations' corner points: the sharp edge rebuilt section by section,
 // exact where side B is ruled across the round but for taking a station's tangent plane half a border
-// spacing h away: within about (h/2)^2 / 2R, R side B's radius along the round. A closed loop (a round
-// all around a circular pocket) is refused (not done yet).
+// spacing h away: within about (h/2)^2 / 2R, R side B's radius along the round. A round all around a loop
+// (a circular pocket's or boss's rim: no end) is one too, its corner line a closed polygon.
 constexpr double kStationTurnDeg = 15;  // largest turn of the corner line between two stations
 constexpr double kJoinDeg = 80;         // see recognise_curved's flood
+
+// The stations of a round all around a loop, in order: each next one at most kLoopGap times the median
+// spacing away (else the nearest-next ordering skipped one and came back for it), and the corner line
+// turning by kStationTurnDeg at most between any two in a row, the last and the first included.
+constexpr double kLoopGap = 3;
+void close_loop(const std::vector<StripFrame>& station, const Vec3& where) {
+  const size_t n = station.size();
+  if (n < 6) not_a_round("it runs all around a loop of " + std::to_string(n) + " stations only (too few to follow it)", where);
+  std::vector<double> gap(n);
+  for (size_t i = 0; i < n; ++i) gap[i] = (station[(i + 1) % n].corner - station[i].corner).norm();
+  std::vector<double> sorted = gap;
+  std::nth_element(sorted.begin(), sorted.begin() + long(n / 2), sorted.end());
+  for (size_t i = 0; i < n; ++i) {
+    const StripFrame &a = station[i], &b = station[(i + 1) % n];
+    if (gap[i] > kLoopGap * sorted[n / 2])
+      not_a_round("its corner line, all around a loop, is not followed evenly at " + format_point(a.corner), where);
+    const double turn = std::acos(std::min(1.0, std::abs(a.axis.dot(b.axis)))) / kDeg;
+    if (turn > kStationTurnDeg)
+      not_a_round("its corner line turns by " + format_number(turn) + " deg at " + format_point(b.corner) +
+                  " (a corner of its curved side, or a corner blend where rounds meet, as around a pocket's rim: not done yet)", where);
+  }
+}
 
 void recognise_curved(const MeshTopology& mesh, Facets& fx, int f0, const std::vector<int>& flood, const std::vector<int>& beside,
                       const SharpenOptions& o, const Vec3& where, RoundStrip& strip, std::vector<std::pair<int, int>>& end_edges) {
@@ -97,7 +119,7 @@ void recognise_curved(const MeshTopology& mesh, Facets& fx, int f0, const std::v
     }
     return false;
   });
-  if (end_edges.empty()) not_a_round("it runs all around a closed loop (a circular pocket's or boss's rim: not done yet)", where);
+  const bool closed = end_edges.empty();  // a round all around a loop (a circular pocket's or boss's rim)
   // Plane A's border.
   int n = 0;
   for (const auto& [v, role] : strip.role)
@@ -183,9 +205,12 @@ void recognise_curved(const MeshTopology& mesh, Facets& fx, int f0, const std::v
       std::swap(station[i], station[best]), std::swap(station_vertex[i], station_vertex[best]);
     }
   }
+  // A loop: its corner line must close up evenly (no station skipped by the ordering) and turn by
+  // kStationTurnDeg at most from each station to the next, the last to the first included.
+  if (closed) close_loop(station, where);
   // The run of stations through the seed's whose corner line turns by kStationTurnDeg at most from one to
   // the next; stations beyond it at an end (an end face's facets across a sliver) are dropped.
-  {
+  if (!closed) {
     std::vector<double> turn(station.size(), 0);
     for (size_t i = 1; i < station.size(); ++i)
       turn[i] = std::acos(std::min(1.0, std::abs(station[i].axis.dot(station[i - 1].axis)))) / kDeg;
@@ -255,6 +280,8 @@ void recognise_curved(const MeshTopology& mesh, Facets& fx, int f0, const std::v
     if (i > 0) s += (F.corner - station[i - 1].corner).norm();
     strip.line.push_back(F.corner), strip.line_s.push_back(s);
   }
+  strip.closed = closed;
+  strip.loop_length = closed ? s + (station.front().corner - station.back().corner).norm() : 0.0;
   // A vertex's frame: its nearest station's, the corner point moved into the vertex's own section.
   for (const auto& [v, role] : strip.role) {
     const Vec3 p = mesh.point(v);
@@ -272,6 +299,7 @@ void recognise_curved(const MeshTopology& mesh, Facets& fx, int f0, const std::v
   strip.end_frame[0] = strip.stations.front(), strip.end_frame[1] = strip.stations.back();
   strip.s_lo = INFINITY, strip.s_hi = -INFINITY;
   for (const auto& [v, role] : strip.role) strip.s_lo = std::min(strip.s_lo, strip.param(mesh.point(v))), strip.s_hi = std::max(strip.s_hi, strip.param(mesh.point(v)));
+  if (closed) strip.s_lo = 0, strip.s_hi = strip.loop_length;
 }
 
 }  // namespace meshround::strip_detail
