@@ -17,10 +17,11 @@ namespace {
 constexpr double kCoplanarDeg = 2;       // the end face's facets at the vertex agree within this
 constexpr double kMinCrossing = 0.3;     // |cos| between the chain and the plane's normal, at least
 constexpr double kMinSpan = 0.17;        // sin of the angle two edges must make to span a plane (10 deg)
-// x r added to a nonzero setback: the last ball clear of the end's plane. At the plane of a mesh edge the chain
-// runs off (open_end_cut), half the round's row across at the default tolerance r / 100 (0.2 r): where a
-// slanted crop is nearest the last ball, the facets between its profile and the end profile are then not
-// slivers (they were down to 3.5 deg on a CAD mesh at 0.02 r).
+// x r added to a nonzero setback, the last ball clear of the end's plane: kSetbackSlack at an end face or a
+// corner; kOpenSetbackSlack at the plane of a mesh edge the chain runs off (open_end_cut), half the round's
+// row across at the default tolerance r / 100 (0.2 r): where a slanted crop is nearest the last ball, the
+// facets between its profile and the end profile are then not slivers (down to 3.5 deg on a CAD mesh at
+// 0.02 r).
 constexpr double kSetbackSlack = 0.02, kOpenSetbackSlack = 0.1;
 
 // The share of a chain its two ends' setbacks may take: the rest, the balls' own stretch, must hold
