@@ -45,6 +45,11 @@ EndPlan plan_ends(const SpineContext& ctx, const RadiusLaw& law, const NetworkPa
 // profile's contacts (a ragged or bent crop) or the plane runs nearly along the chain (corner_not_blendable
 // naming the end), or where the boundary there is a hole's (non_manifold_input).
 EndCut open_end_cut(const MeshTopology& mesh, const SharpChain& chain, bool at_start);
+// That refusal (open_ends.cpp), for the end `at_start` whose open_end_cut is `cut`.
+void check_open_end(const MeshTopology& mesh, const SharpChain& chain, const RadiusLaw& law, double tolerance, bool at_start,
+                    const EndCut& cut);
+
+constexpr double kMinCrossing = 0.3;  // |cos| between a chain and the normal of the plane that ends it, at least
 
 // Where a side's base mesh goes on past a capped end's plane (a pocket's top face around its corner),
 // the band's corner there must run along mesh edges: the segment from the chain's end vertex to the

@@ -68,6 +68,14 @@ def topology_sound(mesh):
     assert not mesh.hasSelfIntersections()
 
 
+def assert_sound_and_local(row):
+    """A scored rounding (reference.score) is watertight, manifold, oriented as its input, free of crossings, and
+    touched nothing beyond the reach."""
+    assert row["boundary_edges_out"] == 0 and row["nonmanifold_edges"] == 0 and row["misoriented_edges"] == 0, row
+    assert not row["self_intersections"] and row["orientation_kept"], row
+    assert row["far_vertices_lost"] == 0 and row["far_facets_lost"] == 0 and row["far_facets_added"] == 0, row
+
+
 RUNS = [(n, v) for n in SHAPES for v in MAX_LENGTH]
 
 
@@ -101,9 +109,7 @@ def test_new_radius_against_occt(name, variant, which):
     row = reference.score(case_at(name, r1), mesh, res.mesh, res.report)
     assert row["dev_out_to_ref"] <= DEVIATION, row
     assert row["dev_ref_to_out"] <= DEVIATION, row
-    assert row["boundary_edges_out"] == 0 and row["nonmanifold_edges"] == 0 and row["misoriented_edges"] == 0, row
-    assert not row["self_intersections"] and row["orientation_kept"], row
-    assert row["far_vertices_lost"] == 0 and row["far_facets_lost"] == 0 and row["far_facets_added"] == 0, row
+    assert_sound_and_local(row)
 
 
 @pytest.mark.parametrize("name,variant", [("box", "coarse"), ("lchannel", "coarse"), ("draft_shoulder", "fine")])
@@ -272,9 +278,7 @@ def test_s_chain_new_radius_against_occt(r1):
     res = MeshRound.change_radius(mesh, [seed_on_round(s_case(S_R0))], r1)
     row = reference.score(s_case(r1), mesh, res.mesh, res.report)
     assert row["dev_out_to_ref"] <= DEVIATION and row["dev_ref_to_out"] <= DEVIATION, row
-    assert row["boundary_edges_out"] == 0 and row["nonmanifold_edges"] == 0 and row["misoriented_edges"] == 0, row
-    assert not row["self_intersections"] and row["orientation_kept"], row
-    assert row["far_vertices_lost"] == 0 and row["far_facets_lost"] == 0 and row["far_facets_added"] == 0, row
+    assert_sound_and_local(row)
 
 
 LOOP_R0 = 3.0  # cases.pocket_rim: the top rim of a 25 mm radius circular pocket, filleted by OCCT (a torus)
@@ -325,9 +329,7 @@ def test_a_round_all_around_a_loop_made_larger_and_smaller_against_occt(variant,
     res = MeshRound.change_radius(mesh, [seed_on_round(loop_case(LOOP_R0))], r1)
     row = reference.score(loop_case(r1), mesh, res.mesh, res.report)
     assert row["dev_out_to_ref"] <= bound and row["dev_ref_to_out"] <= bound, row
-    assert row["boundary_edges_out"] == 0 and row["nonmanifold_edges"] == 0 and row["misoriented_edges"] == 0, row
-    assert not row["self_intersections"] and row["orientation_kept"], row
-    assert row["far_vertices_lost"] == 0 and row["far_facets_lost"] == 0 and row["far_facets_added"] == 0, row
+    assert_sound_and_local(row)
 
 
 @pytest.mark.parametrize("name,max_length,why", [
