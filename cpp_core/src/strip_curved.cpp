@@ -42,6 +42,134 @@ void close_loop(const std::vector<StripFrame>& station, const Vec3& where) {
   }
 }
 
+// The stations' corner points scatter about the true corner line: each station's tangent plane of side B is
+// fitted to a few facets of a tessellated wall, and a tilt of a degree moves its corner by the round's
+// height x 0.017 (0.1 mm on a 3 mm round, ten times the wall's chordal error). The tilt (side B's angle to
+// plane A in the station's section) changes slowly along a wall, while the corner line itself may bend
+// sharply (a straight run into an arc): each station's tilt is put on a line fitted to the tilts of the
+// kSmoothStations stations each side (those far off the window's median left out), its plane B turned to it about the axis through its border vertex, and its
+// corner solved again. `border`: each station's border B vertex.
+constexpr int kSmoothStations = 5;
+constexpr double kSmoothOutlier = 3;
+constexpr double kSmoothFloorDeg = 0.05;
+void smooth_tilts(std::vector<StripFrame>& station, const std::vector<Vec3>& border, bool closed) {
+  const int n = int(station.size()), k = kSmoothStations;
+  if (n < 2 * k + 1) return;
+  std::vector<double> s(static_cast<size_t>(n), 0.0);
+  for (int i = 1; i < n; ++i) s[size_t(i)] = s[size_t(i - 1)] + (station[size_t(i)].corner - station[size_t(i - 1)].corner).norm();
+  const double loop = closed ? s.back() + (station.front().corner - station.back().corner).norm() : 0.0;
+  auto tilt_of = [&](const StripFrame& F) { return std::asin(std::clamp(F.normal[1].dot(F.normal[0]), -1.0, 1.0)); };
+  std::vector<double> tilt(static_cast<size_t>(n));
+  for (int i = 0; i < n; ++i) {
+    int lo = i - k, hi = i + k;  // an open line's window shifts inward at its ends
+    if (!closed) lo = std::clamp(lo, 0, n - 1 - 2 * k), hi = lo + 2 * k;
+    std::vector<std::pair<double, double>> pts;  // (arc length from station i, tilt)
+    for (int j = lo; j <= hi; ++j) {
+      const int w = ((j % n) + n) % n;
+      double t = s[size_t(w)] - s[size_t(i)];
+      if (closed) t += j < 0 ? -loop : (j >= n ? loop : 0.0);
+      pts.push_back({t, tilt_of(station[size_t(w)])});
+    }
+    // The inliers: within kSmoothOutlier robust deviations (1.4826 median absolute deviations, at least
+    // kSmoothFloorDeg) of the window's median tilt; a run of a few bad stations stays out.
+    std::vector<double> v;
+    for (const auto& [t, x] : pts) v.push_back(x);
+    std::nth_element(v.begin(), v.begin() + long(v.size() / 2), v.end());
+    const double median = v[v.size() / 2];
+    for (double& x : v) x = std::abs(x - median);
+    std::nth_element(v.begin(), v.begin() + long(v.size() / 2), v.end());
+    const double within = std::max(kSmoothOutlier * 1.4826 * v[v.size() / 2], kSmoothFloorDeg * kDeg);
+    Eigen::Matrix2d A = Eigen::Matrix2d::Zero();
+    Eigen::Vector2d B = Eigen::Vector2d::Zero();
+    int used = 0;
+    for (const auto& [t, x] : pts)
+      if (std::abs(x - median) <= within) {
+        const Eigen::Vector2d row(1.0, t);
+        A += row * row.transpose(), B += row * x, ++used;
+      }
+    tilt[size_t(i)] = median;
+    if (used >= 3 && std::abs(A.determinant()) > 1e-12 * A.squaredNorm()) tilt[size_t(i)] = A.fullPivLu().solve(B)(0);
+  }
+  for (int i = 0; i < n; ++i) {
+    StripFrame& F = station[size_t(i)];
+    const Vec3 level = F.normal[1] - F.normal[0] * F.normal[0].dot(F.normal[1]);  // side B's normal in plane A
+    if (level.norm() < 1e-9) continue;
+    const Vec3 nB = std::cos(tilt[size_t(i)]) * level.normalized() + std::sin(tilt[size_t(i)]) * F.normal[0];
+    const Vec3& b = border[size_t(i)];
+    Eigen::Matrix3d M;
+    M.row(0) = F.normal[0].transpose(), M.row(1) = nB.transpose(), M.row(2) = F.axis.transpose();
+    const Vec3 c = M.fullPivLu().solve(Eigen::Vector3d(F.offset[0], nB.dot(b), F.axis.dot(b)));
+    if ((c - F.corner).norm() > 0.2 * (F.corner - b).norm()) continue;  // not a scatter: keep it as measured
+    F.normal[1] = nB, F.offset[1] = nB.dot(b), F.corner = c;
+  }
+}
+
+// The stations in order along the corner line: from the one farthest from their middle, each next the
+// nearest (`vertex`, each station's border vertex, kept alongside).
+void order_along(std::vector<StripFrame>& station, std::vector<int>& vertex) {
+  Vec3 middle = Vec3::Zero();
+  for (const StripFrame& F : station) middle += F.corner / double(station.size());
+  size_t first = 0;
+  for (size_t i = 1; i < station.size(); ++i)
+    if ((station[i].corner - middle).squaredNorm() > (station[first].corner - middle).squaredNorm()) first = i;
+  std::swap(station[0], station[first]), std::swap(vertex[0], vertex[first]);
+  for (size_t i = 1; i < station.size(); ++i) {
+    size_t best = i;
+    for (size_t j = i + 1; j < station.size(); ++j)
+      if ((station[j].corner - station[i - 1].corner).squaredNorm() < (station[best].corner - station[i - 1].corner).squaredNorm()) best = j;
+    std::swap(station[i], station[best]), std::swap(vertex[i], vertex[best]);
+  }
+}
+
+// The corner line through the stations' corner points as a C1 curve (cubic Hermite on each span, the
+// tangents by differences over the neighbouring spans), by arc length s: a vertex between two stations
+// takes its section's corner on it, not on its station's tangent (h^2 / 8R off at mid-span).
+struct CornerCurve {
+  const std::vector<StripFrame>& station;
+  std::vector<double> s;  // each station's arc length; a loop's closing span ends at `loop`
+  bool closed;
+  double loop = 0;
+
+  CornerCurve(const std::vector<StripFrame>& st, bool is_closed) : station(st), s(st.size(), 0.0), closed(is_closed) {
+    for (size_t i = 1; i < st.size(); ++i) s[i] = s[i - 1] + (st[i].corner - st[i - 1].corner).norm();
+    loop = closed ? s.back() + (st.front().corner - st.back().corner).norm() : s.back();
+  }
+  size_t count() const { return station.size(); }
+  const Vec3& P(long i) const { const long n = long(count()); return station[size_t(((i % n) + n) % n)].corner; }
+  double S(long i) const {  // arc length of station i, unwrapped around a loop
+    const long n = long(count());
+    const long w = ((i % n) + n) % n;
+    return s[size_t(w)] + double((i - w) / n) * loop;
+  }
+  Vec3 tangent(long i) const {
+    const long n = long(count());
+    if (!closed && i == 0) return (P(1) - P(0)) / std::max(S(1) - S(0), 1e-300);
+    if (!closed && i == n - 1) return (P(n - 1) - P(n - 2)) / std::max(S(n - 1) - S(n - 2), 1e-300);
+    return (P(i + 1) - P(i - 1)) / std::max(S(i + 1) - S(i - 1), 1e-300);
+  }
+  // The point at arc length u and its derivative (unit-ish); an open line goes on straight past its ends.
+  Vec3 at(double u, Vec3* d) const {
+    const long n = long(count());
+    if (n < 3) {
+      *d = (P(n - 1) - P(0)).normalized();
+      return P(0) + *d * (u - S(0));
+    }
+    if (!closed && (u <= S(0) || u >= S(n - 1))) {
+      const long e = u <= S(0) ? 0 : n - 1;
+      *d = tangent(e);
+      return P(e) + *d * (u - S(e));
+    }
+    if (closed) u -= std::floor(u / loop) * loop;
+    long j = long(std::upper_bound(s.begin(), s.end(), u) - s.begin()) - 1;
+    j = std::clamp(j, 0L, closed ? n - 1 : n - 2);
+    const double h = std::max(S(j + 1) - S(j), 1e-300), x = (u - S(j)) / h;
+    const Vec3 m0 = h * tangent(j), m1 = h * tangent(j + 1);
+    *d = ((6 * x * x - 6 * x) * P(j) + (3 * x * x - 4 * x + 1) * m0 + (-6 * x * x + 6 * x) * P(j + 1) + (3 * x * x - 2 * x) * m1) / h;
+    return (2 * x * x * x - 3 * x * x + 1) * P(j) + (x * x * x - 2 * x * x + x) * m0 + (-2 * x * x * x + 3 * x * x) * P(j + 1) +
+           (x * x * x - x * x) * m1;
+  }
+};
+
 void recognise_curved(const MeshTopology& mesh, Facets& fx, int f0, const std::vector<int>& flood, const std::vector<int>& beside,
                       const SharpenOptions& o, const Vec3& where, RoundStrip& strip, std::vector<std::pair<int, int>>& end_edges) {
   const double fd2 = 2 * o.flat_deg;
@@ -190,24 +318,11 @@ void recognise_curved(const MeshTopology& mesh, Facets& fx, int f0, const std::v
     F.corner = M.fullPivLu().solve(Eigen::Vector3d(F.offset[0], F.offset[1], F.axis.dot(mesh.point(b))));
     station.push_back(F), station_vertex.push_back(b);
   }
-  // In order along the corner line: from the station farthest from their middle, each next the nearest.
-  {
-    Vec3 middle = Vec3::Zero();
-    for (const StripFrame& F : station) middle += F.corner / double(station.size());
-    size_t first = 0;
-    for (size_t i = 1; i < station.size(); ++i)
-      if ((station[i].corner - middle).squaredNorm() > (station[first].corner - middle).squaredNorm()) first = i;
-    std::swap(station[0], station[first]), std::swap(station_vertex[0], station_vertex[first]);
-    for (size_t i = 1; i < station.size(); ++i) {
-      size_t best = i;
-      for (size_t j = i + 1; j < station.size(); ++j)
-        if ((station[j].corner - station[i - 1].corner).squaredNorm() < (station[best].corner - station[i - 1].corner).squaredNorm()) best = j;
-      std::swap(station[i], station[best]), std::swap(station_vertex[i], station_vertex[best]);
-    }
-  }
+  order_along(station, station_vertex);
   // A loop: its corner line must close up evenly (no station skipped by the ordering) and turn by
   // kStationTurnDeg at most from each station to the next, the last to the first included.
   if (closed) close_loop(station, where);
+  std::vector<int> run_vertex = station_vertex;  // the border B vertex of each station kept
   // The run of stations through the seed's whose corner line turns by kStationTurnDeg at most from one to
   // the next; stations beyond it at an end (an end face's facets across a sliver) are dropped.
   if (!closed) {
@@ -235,6 +350,7 @@ void recognise_curved(const MeshTopology& mesh, Facets& fx, int f0, const std::v
                   " (a corner of its curved side, or a corner blend where rounds meet, as around a pocket's rim: not done yet)", where);
     }
     station = std::vector<StripFrame>(station.begin() + long(lo), station.begin() + long(hi) + 1);
+    run_vertex.assign(station_vertex.begin() + long(lo), station_vertex.begin() + long(hi) + 1);
     // The border edges at a dropped station are the strip's end there (across them: an end face's
     // facets, reached through a mesher's sliver); their vertices are the strip's.
     const std::unordered_set<int> kept(station_vertex.begin() + long(lo), station_vertex.begin() + long(hi) + 1);
@@ -247,6 +363,13 @@ void recognise_curved(const MeshTopology& mesh, Facets& fx, int f0, const std::v
     }
     strip.border_count[1] = int(kept.size());
     if (station.size() < 2) not_a_round("its curved side's border has fewer than two stations", where);
+  }
+  {
+    std::vector<Vec3> border;
+    for (const int v : run_vertex) border.push_back(mesh.point(v));
+    smooth_tilts(station, border, closed);
+    order_along(station, run_vertex);  // a corrected corner may change places with its neighbour
+    if (closed) close_loop(station, where);
   }
   for (size_t i = 0; i < station.size(); ++i) {
     StripFrame& F = station[i];
@@ -282,11 +405,29 @@ void recognise_curved(const MeshTopology& mesh, Facets& fx, int f0, const std::v
   }
   strip.closed = closed;
   strip.loop_length = closed ? s + (station.front().corner - station.back().corner).norm() : 0.0;
-  // A vertex's frame: its nearest station's, the corner point moved into the vertex's own section.
+  // A vertex's frame: its nearest station's, moved into the vertex's own section on the corner line's curve
+  // (CornerCurve), side B's plane turned about A's normal with the line.
+  const CornerCurve curve(station, closed);
   for (const auto& [v, role] : strip.role) {
     const Vec3 p = mesh.point(v);
     StripFrame F = station[at[v]];
-    F.corner += F.axis * F.axis.dot(p - F.corner);  // its own section's corner point
+    double u = curve.S(long(at[v])) + F.axis.dot(p - F.corner);
+    Vec3 d, c;
+    for (int step = 0; step < 3; ++step) {  // the curve's point whose normal plane holds p
+      c = curve.at(u, &d);
+      u += (p - c).dot(d) / std::max(d.squaredNorm(), 1e-300);
+    }
+    c = curve.at(u, &d);
+    const Vec3 axis = d.dot(F.axis) < 0 ? Vec3(-d.normalized()) : Vec3(d.normalized());
+    const double turn = std::atan2(F.axis.cross(axis).dot(F.normal[0]), F.axis.dot(axis));
+    F.normal[1] = Eigen::AngleAxisd(turn, F.normal[0]) * F.normal[1];
+    F.axis = (F.normal[0].cross(F.normal[1])).normalized();
+    if (F.axis.dot(axis) < 0) F.axis = -F.axis;
+    F.corner = c + F.axis * F.axis.dot(p - c);  // in p's own section
+    F.offset[1] = F.normal[1].dot(F.corner);
+    Eigen::Matrix3d M;
+    M.row(0) = F.normal[0].transpose(), M.row(1) = F.normal[1].transpose(), M.row(2) = F.axis.transpose();
+    F.centre_dir = M.fullPivLu().solve(Eigen::Vector3d(F.side[0], F.side[1], 0));
     strip.frames.emplace(v, F);
   }
   strip.curved = true;
