@@ -229,6 +229,10 @@ void strip_ends(const MeshTopology& mesh, Facets& fx, const std::vector<std::pai
       if (strip.role[v] == StripRole::Inner || strip.role[v] == StripRole::End) strip.role[v] = StripRole::End, strip.end_of[v] = end;
     const int g = fx.across(f, k);
     if (g < 0) continue;
+    // A side's own facet across an end edge (a sliver of the mesher's where the round meets its end face):
+    // not the end face's.
+    const StripFrame& side = strip.curved ? strip.end_frame[end] : static_cast<const StripFrame&>(strip);
+    if (angle_deg(fx.normal(g), side.normal[0]) <= 2 * o.flat_deg || angle_deg(fx.normal(g), side.normal[1]) <= 2 * o.flat_deg) continue;
     strip.ends[end].face = true;
     strip.ends[end].facets.push_back(g);
     sum[end] += fx.area(g) * fx.normal(g);
