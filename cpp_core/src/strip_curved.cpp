@@ -121,40 +121,6 @@ void order_along(std::vector<StripFrame>& station, std::vector<int>& vertex) {
   }
 }
 
-// A border vertex of side B may be a vertex of the round next to its contact line, whose facets lie within
-// the flat tolerance of the wall and were taken for it: it stands off the wall by about dz^2 / 2r (dz its
-// height above the contact line) and a station there puts its corner off by as much. Such stations are
-// dropped: those whose border vertex's distance from plane A differs from the median of the kFootWindow
-// stations each side by more than kFootSlack of it (the contact line's own vertices agree to a few
-// thousandths). Returns their border vertices (still the strip's border).
-constexpr int kFootWindow = 3;
-constexpr double kFootSlack = 0.08;
-std::vector<int> drop_stations_off_the_wall(const MeshTopology& mesh, std::vector<StripFrame>& station, std::vector<int>& vertex,
-                                            bool closed) {
-  const long n = long(station.size());
-  if (n < 2 * kFootWindow + 1) return {};
-  std::vector<double> height(static_cast<size_t>(n));
-  for (long i = 0; i < n; ++i) height[size_t(i)] = std::abs(station[size_t(i)].normal[0].dot(mesh.point(vertex[size_t(i)])) - station[size_t(i)].offset[0]);
-  std::vector<char> drop(static_cast<size_t>(n), 0);
-  for (long i = 0; i < n; ++i) {
-    long lo = i - kFootWindow;
-    if (!closed) lo = std::clamp(lo, 0L, n - 1 - 2 * kFootWindow);
-    std::vector<double> w;
-    for (long j = lo; j <= lo + 2 * kFootWindow; ++j) w.push_back(height[size_t(((j % n) + n) % n)]);
-    std::nth_element(w.begin(), w.begin() + long(w.size() / 2), w.end());
-    const double median = w[w.size() / 2];
-    drop[size_t(i)] = std::abs(height[size_t(i)] - median) > kFootSlack * median;
-  }
-  std::vector<StripFrame> kept;
-  std::vector<int> kept_vertex, dropped;
-  for (long i = 0; i < n; ++i)
-    if (!drop[size_t(i)]) kept.push_back(station[size_t(i)]), kept_vertex.push_back(vertex[size_t(i)]);
-    else dropped.push_back(vertex[size_t(i)]);
-  if (kept.size() < 2) return {};
-  station.swap(kept), vertex.swap(kept_vertex);
-  return dropped;
-}
-
 // The corner line through the stations' corner points as a C1 curve (cubic Hermite on each span, the
 // tangents by differences over the neighbouring spans), by arc length s: a vertex between two stations
 // takes its section's corner on it, not on its station's tangent (h^2 / 8R off at mid-span).
@@ -353,7 +319,6 @@ void recognise_curved(const MeshTopology& mesh, Facets& fx, int f0, const std::v
     station.push_back(F), station_vertex.push_back(b);
   }
   order_along(station, station_vertex);
-  const std::vector<int> off_wall = drop_stations_off_the_wall(mesh, station, station_vertex, closed);
   // A loop: its corner line must close up evenly (no station skipped by the ordering) and turn by
   // kStationTurnDeg at most from each station to the next, the last to the first included.
   if (closed) close_loop(station, where);
@@ -388,8 +353,7 @@ void recognise_curved(const MeshTopology& mesh, Facets& fx, int f0, const std::v
     run_vertex.assign(station_vertex.begin() + long(lo), station_vertex.begin() + long(hi) + 1);
     // The border edges at a dropped station are the strip's end there (across them: an end face's
     // facets, reached through a mesher's sliver); their vertices are the strip's.
-    std::unordered_set<int> kept(station_vertex.begin() + long(lo), station_vertex.begin() + long(hi) + 1);
-    kept.insert(off_wall.begin(), off_wall.end());
+    const std::unordered_set<int> kept(station_vertex.begin() + long(lo), station_vertex.begin() + long(hi) + 1);
     for (const auto& [f, k] : border_edges) {
       const int a = mesh.F(f, k), b = mesh.F(f, (k + 1) % 3);
       if (kept.count(a) && kept.count(b)) continue;
