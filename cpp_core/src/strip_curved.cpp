@@ -13,10 +13,11 @@ namespace meshround::strip_detail {
 // gets its frame: plane A and side B's tangent plane there (normal to the axis and to side B's line in the
 // station's section, fitted to the side-B vertices nearly in it), their corner line and the ball's centre
 // direction; each strip vertex takes the frame of its nearest station, its corner point moved into its
-// own section. The corner line is the stations' corner points: the sharp edge rebuilt section by section,
-// exact where side B is ruled across the round but for taking a station's tangent plane half a border
-// spacing h away: within about (h/2)^2 / 2R, R side B's radius along the round. A round all around a loop
-// (a circular pocket's or boss's rim: no end) is one too, its corner line a closed polygon.
+// own section on a smooth curve through the stations' corners (CornerCurve), the stations' tilts smoothed
+// along the line first (smooth_tilts). The corner line is the stations' corner points: the sharp edge
+// rebuilt section by section, exact at the stations where side B is ruled across the round (the edge is
+// their polygon). A round all around a loop (a circular pocket's or boss's rim: no end) is one too, its
+// corner line a closed polygon.
 constexpr double kStationTurnDeg = 15;  // largest turn of the corner line between two stations
 constexpr double kJoinDeg = 80;         // see recognise_curved's flood
 
@@ -47,8 +48,9 @@ void close_loop(const std::vector<StripFrame>& station, const Vec3& where) {
 // height x 0.017 (0.1 mm on a 3 mm round, ten times the wall's chordal error). The tilt (side B's angle to
 // plane A in the station's section) changes slowly along a wall, while the corner line itself may bend
 // sharply (a straight run into an arc): each station's tilt is put on a line fitted to the tilts of the
-// kSmoothStations stations each side (those far off the window's median left out), its plane B turned to it about the axis through its border vertex, and its
-// corner solved again. `border`: each station's border B vertex.
+// kSmoothStations stations each side (those far off the window's median left out), its plane B turned to it
+// about the axis through its border vertex, and its corner solved again (a station moved by over a fifth of
+// its round's width is kept as measured: not a scatter). `border`: each station's border B vertex.
 constexpr int kSmoothStations = 5;
 constexpr double kSmoothOutlier = 3;
 constexpr double kSmoothFloorDeg = 0.05;
