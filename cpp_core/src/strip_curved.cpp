@@ -43,84 +43,12 @@ void close_loop(const std::vector<StripFrame>& station, const Vec3& where) {
   }
 }
 
-// The stations' corner points scatter about the true corner line: each station's tangent plane of side B is
-// fitted to a few facets of a tessellated wall, and a tilt of a degree moves its corner by the round's
-// height x 0.017 (0.1 mm on a 3 mm round, ten times the wall's chordal error). The tilt (side B's angle to
-// plane A in the station's section) changes slowly along a wall, while the corner line itself may bend
-// sharply (a straight run into an arc): each station's tilt is put on a line fitted to the tilts of the
-// kSmoothStations stations each side (those far off the window's median left out), its plane B turned to it
-// about the axis through its border vertex, and its corner solved again (a station moved by over a fifth of
-// its round's width is kept as measured: not a scatter). `border`: each station's border B vertex.
-constexpr int kSmoothStations = 5;
-constexpr double kSmoothOutlier = 3;
-constexpr double kSmoothFloorDeg = 0.05;
-void smooth_tilts(std::vector<StripFrame>& station, const std::vector<Vec3>& border, bool closed) {
-  const int n = int(station.size()), k = kSmoothStations;
-  if (n < 2 * k + 1) return;
-  std::vector<double> s(static_cast<size_t>(n), 0.0);
-  for (int i = 1; i < n; ++i) s[size_t(i)] = s[size_t(i - 1)] + (station[size_t(i)].corner - station[size_t(i - 1)].corner).norm();
-  const double loop = closed ? s.back() + (station.front().corner - station.back().corner).norm() : 0.0;
-  auto tilt_of = [&](const StripFrame& F) { return std::asin(std::clamp(F.normal[1].dot(F.normal[0]), -1.0, 1.0)); };
-  std::vector<double> tilt(static_cast<size_t>(n));
-  for (int i = 0; i < n; ++i) {
-    int lo = i - k, hi = i + k;  // an open line's window shifts inward at its ends
-    if (!closed) lo = std::clamp(lo, 0, n - 1 - 2 * k), hi = lo + 2 * k;
-    std::vector<std::pair<double, double>> pts;  // (arc length from station i, tilt)
-    for (int j = lo; j <= hi; ++j) {
-      const int w = ((j % n) + n) % n;
-      double t = s[size_t(w)] - s[size_t(i)];
-      if (closed) t += j < 0 ? -loop : (j >= n ? loop : 0.0);
-      pts.push_back({t, tilt_of(station[size_t(w)])});
-    }
-    // The inliers: within kSmoothOutlier robust deviations (1.4826 median absolute deviations, at least
-    // kSmoothFloorDeg) of the window's median tilt; a run of a few bad stations stays out.
-    std::vector<double> v;
-    for (const auto& [t, x] : pts) v.push_back(x);
-    std::nth_element(v.begin(), v.begin() + long(v.size() / 2), v.end());
-    const double median = v[v.size() / 2];
-    for (double& x : v) x = std::abs(x - median);
-    std::nth_element(v.begin(), v.begin() + long(v.size() / 2), v.end());
-    const double within = std::max(kSmoothOutlier * 1.4826 * v[v.size() / 2], kSmoothFloorDeg * kDeg);
-    Eigen::Matrix2d A = Eigen::Matrix2d::Zero();
-    Eigen::Vector2d B = Eigen::Vector2d::Zero();
-    int used = 0;
-    for (const auto& [t, x] : pts)
-      if (std::abs(x - median) <= within) {
-        const Eigen::Vector2d row(1.0, t);
-        A += row * row.transpose(), B += row * x, ++used;
-      }
-    tilt[size_t(i)] = median;
-    if (used >= 3 && std::abs(A.determinant()) > 1e-12 * A.squaredNorm()) tilt[size_t(i)] = A.fullPivLu().solve(B)(0);
-  }
-  for (int i = 0; i < n; ++i) {
-    StripFrame& F = station[size_t(i)];
-    const Vec3 level = F.normal[1] - F.normal[0] * F.normal[0].dot(F.normal[1]);  // side B's normal in plane A
-    if (level.norm() < 1e-9) continue;
-    const Vec3 nB = std::cos(tilt[size_t(i)]) * level.normalized() + std::sin(tilt[size_t(i)]) * F.normal[0];
-    const Vec3& b = border[size_t(i)];
-    Eigen::Matrix3d M;
-    M.row(0) = F.normal[0].transpose(), M.row(1) = nB.transpose(), M.row(2) = F.axis.transpose();
-    const Vec3 c = M.fullPivLu().solve(Eigen::Vector3d(F.offset[0], nB.dot(b), F.axis.dot(b)));
-    if ((c - F.corner).norm() > 0.2 * (F.corner - b).norm()) continue;  // not a scatter: keep it as measured
-    F.normal[1] = nB, F.offset[1] = nB.dot(b), F.corner = c;
-  }
-}
-
-// The stations in order along the corner line: from the one farthest from their middle, each next the
-// nearest (`vertex`, each station's border vertex, kept alongside).
-void order_along(std::vector<StripFrame>& station, std::vector<int>& vertex) {
-  Vec3 middle = Vec3::Zero();
-  for (const StripFrame& F : station) middle += F.corner / double(station.size());
-  size_t first = 0;
-  for (size_t i = 1; i < station.size(); ++i)
-    if ((station[i].corner - middle).squaredNorm() > (station[first].corner - middle).squaredNorm()) first = i;
-  std::swap(station[0], station[first]), std::swap(vertex[0], vertex[first]);
-  for (size_t i = 1; i < station.size(); ++i) {
-    size_t best = i;
-    for (size_t j = i + 1; j < station.size(); ++j)
-      if ((station[j].corner - station[i - 1].corner).squaredNorm() < (station[best].corner - station[i - 1].corner).squaredNorm()) best = j;
-    std::swap(station[i], station[best]), std::swap(vertex[i], vertex[best]);
-  }
+// The point x with n0 . x = rhs(0), n1 . x = rhs(1), axis . x = rhs(2): a frame's corner (its two side planes
+// and its section), or, with the sides' signs, the direction of its ball's centre.
+Vec3 frame_solve(const Vec3& n0, const Vec3& n1, const Vec3& axis, const Vec3& rhs) {
+  Eigen::Matrix3d M;
+  M.row(0) = n0.transpose(), M.row(1) = n1.transpose(), M.row(2) = axis.transpose();
+  return M.fullPivLu().solve(rhs);
 }
 
 // The corner line through the stations' corner points as a C1 curve (cubic Hermite on each span, the
@@ -171,6 +99,78 @@ struct CornerCurve {
            (x * x * x - x * x) * m1;
   }
 };
+
+// The stations' corner points scatter about the true corner line: each station's tangent plane of side B is
+// fitted to a few facets of a tessellated wall, and a tilt of a degree moves its corner by the round's
+// height x 0.017 (0.1 mm on a 3 mm round, ten times the wall's chordal error). The tilt (side B's angle to
+// plane A in the station's section) changes slowly along a wall, while the corner line itself may bend
+// sharply (a straight run into an arc): each station's tilt is put on a line fitted to the tilts of the
+// kSmoothStations stations each side (those far off the window's median left out), its plane B turned to it
+// about the axis through its border vertex, and its corner solved again (a station moved by over a fifth of
+// its round's width is kept as measured: not a scatter). `border`: each station's border B vertex.
+constexpr int kSmoothStations = 5;
+constexpr double kSmoothOutlier = 3;
+constexpr double kSmoothFloorDeg = 0.05;
+void smooth_tilts(std::vector<StripFrame>& station, const std::vector<Vec3>& border, bool closed) {
+  const int n = int(station.size()), k = kSmoothStations;
+  if (n < 2 * k + 1) return;
+  const CornerCurve line(station, closed);  // (its arc lengths: read before any station is changed)
+  auto tilt_of = [&](const StripFrame& F) { return std::asin(std::clamp(F.normal[1].dot(F.normal[0]), -1.0, 1.0)); };
+  std::vector<double> tilt(static_cast<size_t>(n));
+  for (int i = 0; i < n; ++i) {
+    int lo = i - k, hi = i + k;  // an open line's window shifts inward at its ends
+    if (!closed) lo = std::clamp(lo, 0, n - 1 - 2 * k), hi = lo + 2 * k;
+    std::vector<std::pair<double, double>> pts;  // (arc length from station i, tilt)
+    for (int j = lo; j <= hi; ++j) pts.push_back({line.S(j) - line.S(i), tilt_of(station[size_t(((j % n) + n) % n)])});
+    // The inliers: within kSmoothOutlier robust deviations (1.4826 median absolute deviations, at least
+    // kSmoothFloorDeg) of the window's median tilt; a run of a few bad stations stays out.
+    std::vector<double> v;
+    for (const auto& [t, x] : pts) v.push_back(x);
+    std::nth_element(v.begin(), v.begin() + long(v.size() / 2), v.end());
+    const double median = v[v.size() / 2];
+    for (double& x : v) x = std::abs(x - median);
+    std::nth_element(v.begin(), v.begin() + long(v.size() / 2), v.end());
+    const double within = std::max(kSmoothOutlier * 1.4826 * v[v.size() / 2], kSmoothFloorDeg * kDeg);
+    Eigen::Matrix2d A = Eigen::Matrix2d::Zero();
+    Eigen::Vector2d B = Eigen::Vector2d::Zero();
+    int used = 0;
+    for (const auto& [t, x] : pts)
+      if (std::abs(x - median) <= within) {
+        const Eigen::Vector2d row(1.0, t);
+        A += row * row.transpose(), B += row * x, ++used;
+      }
+    tilt[size_t(i)] = median;
+    if (used >= 3 && std::abs(A.determinant()) > 1e-12 * A.squaredNorm()) tilt[size_t(i)] = A.fullPivLu().solve(B)(0);
+  }
+  for (int i = 0; i < n; ++i) {
+    StripFrame& F = station[size_t(i)];
+    const Vec3 level = F.normal[1] - F.normal[0] * F.normal[0].dot(F.normal[1]);  // side B's normal in plane A
+    if (level.norm() < 1e-9) continue;
+    const Vec3 nB = std::cos(tilt[size_t(i)]) * level.normalized() + std::sin(tilt[size_t(i)]) * F.normal[0];
+    const Vec3& b = border[size_t(i)];
+    const Vec3 c = frame_solve(F.normal[0], nB, F.axis, Vec3(F.offset[0], nB.dot(b), F.axis.dot(b)));
+    if ((c - F.corner).norm() > 0.2 * (F.corner - b).norm()) continue;  // not a scatter: keep it as measured
+    F.normal[1] = nB, F.offset[1] = nB.dot(b), F.corner = c;
+  }
+}
+
+// The stations in order along the corner line: from the one farthest from their middle, each next the
+// nearest (`vertex`, each station's border vertex, kept alongside).
+void order_along(std::vector<StripFrame>& station, std::vector<int>& vertex) {
+  Vec3 middle = Vec3::Zero();
+  for (const StripFrame& F : station) middle += F.corner / double(station.size());
+  size_t first = 0;
+  for (size_t i = 1; i < station.size(); ++i)
+    if ((station[i].corner - middle).squaredNorm() > (station[first].corner - middle).squaredNorm()) first = i;
+  std::swap(station[0], station[first]), std::swap(vertex[0], vertex[first]);
+  for (size_t i = 1; i < station.size(); ++i) {
+    size_t best = i;
+    for (size_t j = i + 1; j < station.size(); ++j)
+      if ((station[j].corner - station[i - 1].corner).squaredNorm() < (station[best].corner - station[i - 1].corner).squaredNorm()) best = j;
+    std::swap(station[i], station[best]), std::swap(vertex[i], vertex[best]);
+  }
+}
+
 
 void recognise_curved(const MeshTopology& mesh, Facets& fx, int f0, const std::vector<int>& flood, const std::vector<int>& beside,
                       const SharpenOptions& o, const Vec3& where, RoundStrip& strip, std::vector<std::pair<int, int>>& end_edges) {
@@ -315,9 +315,7 @@ void recognise_curved(const MeshTopology& mesh, Facets& fx, int f0, const std::v
     F.axis = F.normal[0].cross(F.normal[1]);
     if (F.axis.norm() < 1e-6) not_a_round("its two sides are parallel at " + format_point(mesh.point(b)), where);
     F.axis.normalize();
-    Eigen::Matrix3d M;
-    M.row(0) = F.normal[0].transpose(), M.row(1) = F.normal[1].transpose(), M.row(2) = F.axis.transpose();
-    F.corner = M.fullPivLu().solve(Eigen::Vector3d(F.offset[0], F.offset[1], F.axis.dot(mesh.point(b))));
+    F.corner = frame_solve(F.normal[0], F.normal[1], F.axis, Vec3(F.offset[0], F.offset[1], F.axis.dot(mesh.point(b))));
     station.push_back(F), station_vertex.push_back(b);
   }
   order_along(station, station_vertex);
@@ -399,9 +397,7 @@ void recognise_curved(const MeshTopology& mesh, Facets& fx, int f0, const std::v
   for (size_t i = 0; i < station.size(); ++i) {
     StripFrame& F = station[i];
     F.side[0] = strip.side[0], F.side[1] = strip.side[1];
-    Eigen::Matrix3d M;
-    M.row(0) = F.normal[0].transpose(), M.row(1) = F.normal[1].transpose(), M.row(2) = F.axis.transpose();
-    F.centre_dir = M.fullPivLu().solve(Eigen::Vector3d(F.side[0], F.side[1], 0));
+    F.centre_dir = frame_solve(F.normal[0], F.normal[1], F.axis, Vec3(F.side[0], F.side[1], 0));
     if (i > 0) s += (F.corner - station[i - 1].corner).norm();
     strip.line.push_back(F.corner), strip.line_s.push_back(s);
   }
@@ -427,9 +423,7 @@ void recognise_curved(const MeshTopology& mesh, Facets& fx, int f0, const std::v
     if (F.axis.dot(axis) < 0) F.axis = -F.axis;
     F.corner = c + F.axis * F.axis.dot(p - c);  // in p's own section
     F.offset[1] = F.normal[1].dot(F.corner);
-    Eigen::Matrix3d M;
-    M.row(0) = F.normal[0].transpose(), M.row(1) = F.normal[1].transpose(), M.row(2) = F.axis.transpose();
-    F.centre_dir = M.fullPivLu().solve(Eigen::Vector3d(F.side[0], F.side[1], 0));
+    F.centre_dir = frame_solve(F.normal[0], F.normal[1], F.axis, Vec3(F.side[0], F.side[1], 0));
     strip.frames.emplace(v, F);
   }
   strip.curved = true;
