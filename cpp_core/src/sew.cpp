@@ -126,6 +126,77 @@ std::vector<std::vector<int>> gap_loops(const std::vector<std::pair<int, int>>& 
   return loops;
 }
 
+Vec3 newell_normal(const MeshEdit& edit, const std::vector<int>& loop) {
+  Vec3 normal = Vec3::Zero();
+  for (size_t i = 0; i < loop.size(); ++i) normal += edit.point(loop[i]).cross(edit.point(loop[(i + 1) % loop.size()]));
+  return normal;
+}
+
+// An island: kept facets that a gap goes all round, touching the gap's outer side at one vertex (an end
+// face meshed with a fan of small facets from the chain's end vertex to a far corner of the face: the cap
+// takes the facets on both sides of the fan and leaves the fan). gap_loops gives its rim as a loop of its
+// own, running the other way round (Newell's normal opposite the outer loop's, and smaller). The island
+// lies inside the patch the gap is to become, so it goes too: its facets (kept input facets and facets
+// made by the trim, never the round's), flooded from the rim's edges and not across them. False, and
+// nothing removed, where the flood meets the round or the input's boundary or runs past kMaxIsland facets:
+// not an island.
+constexpr size_t kMaxIsland = 2000;
+bool remove_islands(MeshEdit& edit, const std::vector<std::vector<int>>& loops, size_t round_begin, size_t round_end) {
+  const MeshTopology& in = edit.input;
+  std::vector<Vec3> normal(loops.size());
+  for (size_t i = 0; i < loops.size(); ++i) normal[i] = newell_normal(edit, loops[i]);
+  std::unordered_set<std::uint64_t> rim;  // the islands' rims' edges
+  for (size_t i = 0; i < loops.size(); ++i)
+    for (size_t j = 0; j < loops.size(); ++j) {
+      if (i == j || !(normal[i].norm() < normal[j].norm()) || normal[i].dot(normal[j]) > -0.9 * normal[i].norm() * normal[j].norm()) continue;
+      const std::unordered_set<int> outer(loops[j].begin(), loops[j].end());
+      if (std::none_of(loops[i].begin(), loops[i].end(), [&](int v) { return outer.count(v) > 0; })) continue;
+      for (size_t k = 0; k < loops[i].size(); ++k) rim.insert(edge_key(loops[i][k], loops[i][(k + 1) % loops[i].size()]));
+    }
+  if (rim.empty()) return false;
+  // The edited mesh's facets by edge, near the edit: ids >= 0 input facets, -1 - i made facet i.
+  std::unordered_map<std::uint64_t, std::vector<int>> made_at;
+  for (size_t i = 0; i < edit.added.size(); ++i)
+    for (int k = 0; k < 3; ++k) made_at[edge_key(edit.added[i][k], edit.added[i][(k + 1) % 3])].push_back(-1 - int(i));
+  auto corners = [&](int f) { return f >= 0 ? std::array<int, 3>{in.F(f, 0), in.F(f, 1), in.F(f, 2)} : edit.added[size_t(-1 - f)]; };
+  auto facets_at = [&](int a, int b) {
+    std::vector<int> out;
+    if (a < in.num_vertices() && b < in.num_vertices())
+      for (int g : in.edge_facets(a, b))
+        if (!edit.removed.count(g)) out.push_back(g);
+    const auto it = made_at.find(edge_key(a, b));
+    if (it != made_at.end()) out.insert(out.end(), it->second.begin(), it->second.end());
+    return out;
+  };
+  std::unordered_set<int> island;
+  std::vector<int> todo;
+  for (std::uint64_t key : rim)
+    for (int f : facets_at(int(key >> 32), int(key & 0xffffffffu)))
+      if (island.insert(f).second) todo.push_back(f);
+  while (!todo.empty()) {
+    const int f = todo.back();
+    todo.pop_back();
+    if (f < 0 && size_t(-1 - f) >= round_begin && size_t(-1 - f) < round_end) return false;  // the round
+    if (island.size() > kMaxIsland) return false;
+    const std::array<int, 3> c = corners(f);
+    for (int k = 0; k < 3; ++k) {
+      const int a = c[size_t(k)], b = c[size_t((k + 1) % 3)];
+      if (rim.count(edge_key(a, b))) continue;
+      const std::vector<int> next = facets_at(a, b);
+      if (next.size() < 2) return false;  // the input's boundary: not enclosed
+      for (int g : next)
+        if (island.insert(g).second) todo.push_back(g);
+    }
+  }
+  std::vector<std::array<int, 3>> kept;
+  for (size_t i = 0; i < edit.added.size(); ++i)
+    if (!island.count(-1 - int(i))) kept.push_back(edit.added[i]);
+  edit.added = std::move(kept);
+  for (int f : island)
+    if (f >= 0) edit.removed.insert(f);
+  return true;
+}
+
 }  // namespace
 
 SewStats sew_round(MeshEdit& edit, size_t round_begin, size_t round_end, const Refinement& fill) {
@@ -150,22 +221,27 @@ SewStats sew_round(MeshEdit& edit, size_t round_begin, size_t round_end, const R
 
   // Gaps: loops of edges that are open now but were not open in the input.
   const MeshTopology& in = edit.input;
-  std::vector<std::pair<int, int>> open_edges;  // fill loops run against the open edges' facets: b -> a
-  for (const auto& [key, e] : edges_near_edit(edit)) {
-    if (e.count != 1) continue;
-    const bool input_edge = e.a < in.num_vertices() && e.b < in.num_vertices();
-    if (input_edge && in.edge_facets(e.a, e.b).size() == 1) continue;  // the input's own boundary
-    open_edges.push_back({e.b, e.a});
-  }
   int open_chains = 0;
-  for (std::vector<int>& loop : gap_loops(open_edges, &open_chains)) {
+  auto find_gaps = [&] {
+    std::vector<std::pair<int, int>> open_edges;  // fill loops run against the open edges' facets: b -> a
+    for (const auto& [key, e] : edges_near_edit(edit)) {
+      if (e.count != 1) continue;
+      const bool input_edge = e.a < in.num_vertices() && e.b < in.num_vertices();
+      if (input_edge && in.edge_facets(e.a, e.b).size() == 1) continue;  // the input's own boundary
+      open_edges.push_back({e.b, e.a});
+    }
+    open_chains = 0;
+    return gap_loops(open_edges, &open_chains);
+  };
+  std::vector<std::vector<int>> loops = find_gaps();
+  if (remove_islands(edit, loops, round_begin, round_end)) loops = find_gaps();
+  for (std::vector<int>& loop : loops) {
     poll_cancel();
     if (loop.size() < 3) {
       ++stats.open_gaps;
       continue;
     }
-    Vec3 normal = Vec3::Zero();  // Newell's normal of the loop
-    for (size_t i = 0; i < loop.size(); ++i) normal += edit.point(loop[i]).cross(edit.point(loop[(i + 1) % loop.size()]));
+    const Vec3 normal = newell_normal(edit, loop);
     if (getenv("MESHROUND_DEBUG")) {
       fprintf(stderr, "gap loop of %zu:", loop.size());
       for (int v : loop) fprintf(stderr, " %d(%.3f %.3f %.3f)", v, edit.point(v).x(), edit.point(v).y(), edit.point(v).z());

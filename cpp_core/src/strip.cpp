@@ -62,15 +62,25 @@ Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> normal_spread(Facets& fx, std::ve
 // tell a round turning along its length from a free-form region.
 constexpr size_t kLocalFacets = 60;
 
-// The axis the flood's normals turn about: the direction they are all (nearly) perpendicular to. The
+// The share of the flood's area that may tilt by more than facet_tilt_deg from perpendicular to its axis.
+constexpr double kTiltedShare = 0.02;
+
+// The axis the flood's normals turn about: the direction they are all (nearly) perpendicular to, in the
+// mean (tilt_deg rms) and facet by facet (all but kTiltedShare of the area within facet_tilt_deg). The
 // flood (breadth first from the seed) failing that while its first kLocalFacets pass is a round whose
 // axis turns along it: a chain curved in plan, or rounds going on into others through corner blends.
-Vec3 turning_axis(Facets& fx, const std::vector<int>& facets, const Vec3& where, double tilt_deg, bool* turns = nullptr) {
-  const double tilt2 = std::pow(std::sin(tilt_deg * kDeg), 2);
+// (The facet test: a CAD mesh of a round along a wall curved in plan floods the wall too -- its facets are
+// curved ones -- and the wall's area, its normals all level, passed the mean test about the vertical, though
+// the round's facets next to the top face tilt by up to 90 degrees from level.)
+Vec3 turning_axis(Facets& fx, const std::vector<int>& facets, const Vec3& where, const SharpenOptions& o, bool* turns = nullptr) {
+  const double tilt2 = std::pow(std::sin(o.axis_tilt_deg * kDeg), 2), facet_tilt = std::sin(o.facet_tilt_deg * kDeg);
   double total = 0;
   const auto eig = normal_spread(fx, facets.begin(), facets.end(), &total);
   const Eigen::Vector3d lam = eig.eigenvalues();  // ascending
-  if (!(total > 0) || lam(0) > tilt2 * total) {
+  double tilted = 0;
+  for (int f : facets)
+    if (std::abs(fx.normal(f).dot(eig.eigenvectors().col(0).normalized())) > facet_tilt) tilted += fx.area(f);
+  if (!(total > 0) || lam(0) > tilt2 * total || tilted > kTiltedShare * total) {
     double local_total = 0;
     const auto near = normal_spread(fx, facets.begin(), facets.begin() + std::min(facets.size(), kLocalFacets), &local_total);
     const bool local = facets.size() > kLocalFacets && local_total > 0 && near.eigenvalues()(0) <= tilt2 * local_total &&
@@ -277,7 +287,7 @@ RoundStrip recognise_strip(const MeshTopology& mesh, const Vec3& seed, const Sha
   flood_curved(fx, f0, o.max_new_facets, curved, beside);
   RoundStrip strip;
   bool turns = false, curved_side = false;
-  const Vec3 axis0 = turning_axis(fx, curved, seed, o.axis_tilt_deg, &turns);
+  const Vec3 axis0 = turning_axis(fx, curved, seed, o, &turns);
   if (!turns) side_normals(fx, beside, fx.normal(f0), axis0, o, seed, strip, &curved_side);
   std::vector<std::pair<int, int>> end_edges;
   if (turns || curved_side) {

@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 
 namespace meshround {
 
@@ -94,14 +95,22 @@ bool snap_target(const MeshTopology& mesh, int v, const ContactLineDistance& dis
 }
 
 // True if no facet around v turns over, or gets a smaller angle than min(kSnapKeepsAngle, its own), when v
-// moves to q (its neighbours where earlier snaps put them).
-bool snap_keeps_shape(const MeshTopology& mesh, const MeshEdit& edit, int v, const Vec3& q) {
+// moves to q (its neighbours where earlier snaps put them). The angle is not asked of a facet with another
+// corner inside the band (`in_band`): the line cuts it and only its piece outside is kept, triangulated anew.
+// (A CAD mesh's sliver 60 mm long beside a crease, one corner 0.07 mm outside the line and one inside:
+// snapping the outer corner along the crease onto the line thinned the sliver, so it stayed, and the strip
+// between it and the line was left a sliver of no area.)
+bool snap_keeps_shape(const MeshTopology& mesh, const MeshEdit& edit, int v, const Vec3& q, const std::function<bool(int)>& in_band) {
   for (const int* g = mesh.facets_begin(v); g != mesh.facets_end(v); ++g) {
     Vec3 c[3];
-    for (int k = 0; k < 3; ++k) c[k] = mesh.F(*g, k) == v ? q : edit.point(mesh.F(*g, k));
+    bool cut = false;
+    for (int k = 0; k < 3; ++k) {
+      c[k] = mesh.F(*g, k) == v ? q : edit.point(mesh.F(*g, k));
+      cut |= mesh.F(*g, k) != v && in_band(mesh.F(*g, k));
+    }
     const double before = smallest_angle(mesh.corner(*g, 0), mesh.corner(*g, 1), mesh.corner(*g, 2));
     if ((c[1] - c[0]).cross(c[2] - c[0]).dot(mesh.facet_normal(*g)) <= 0 ||
-        smallest_angle(c[0], c[1], c[2]) < std::min(kSnapKeepsAngle, before))
+        (!cut && smallest_angle(c[0], c[1], c[2]) < std::min(kSnapKeepsAngle, before)))
       return false;
   }
   return true;
@@ -295,9 +304,24 @@ void SideTrim::snap_near_line(int v, VertexSide& s, const Vec3& away, bool on_en
         snap_target(mesh, v, line_distance, s.d, s.u, away, 0.02 * opt.tolerance, &q, &on_crease)))
     return;
   const double move = (q - mesh.point(v)).norm();
+  // (For a snap along a crease only: everywhere, it let snaps through that left degenerate pieces of cut
+  // facets on CAD meshes of the L channel and the drafted shoulder.)
+  auto in_band = [&](int w) {
+    double u = s.u;
+    return on_crease && distance(edit.point(w), s.u, &u) < -hair;
+  };
+  // Along a crease two vertices may have one target, where the line crosses the crease between them: the
+  // nearer goes there (the farther one snapped first, from inside the band, left the nearer a hair outside
+  // the line, and the strip between them a sliver of no area: a CAD mesh's rows along a round that was
+  // sharpened, 60 mm long, 0.07 mm off the line).
+  if (on_crease)
+    for (int w : mesh.vertex_neighbours(v)) {
+      const Vec3 vw = mesh.point(w) - mesh.point(v), vq = q - mesh.point(v);
+      if (!edit.moved.count(w) && (mesh.point(w) - q).norm() < move && vw.cross(vq).norm() <= 1e-3 * vw.norm() * vq.norm()) return;
+    }
   const bool stays_on_end_plane = !on_end_plane || std::abs(ctx.past_end(q)) <= ctx.plane_slack;  // (e.g. along the end face's edge)
   if (!(stays_on_end_plane && (move < near_edges || ((on_crease ? move < near_line : move < kNearShaped * shortest) &&
-                                                     snap_keeps_shape(mesh, edit, v, q)))))
+                                                     snap_keeps_shape(mesh, edit, v, q, in_band)))))
     return;
   if (!edge_reenters(v, q, s.u)) {
     edit.moved[v] = q;

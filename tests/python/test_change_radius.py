@@ -30,7 +30,10 @@ from MeshRound import cli
 
 V = FreeCAD.Vector
 MAX_LENGTH = {"fine": 0.4, "coarse": 0.7}     # / r0
-FOUND_WITHIN = {"fine": 0.01, "coarse": 0.05}  # relative error of the found radius (the issue's bars)
+# A CAD export's tessellation (cases.MESH_VARIANTS "cad"): a few long facets on the flat faces, the round in
+# strips the whole length of the edge (60 mm by 0.36 mm on the box: sharpened, its sides are such strips too).
+CAD_MESH = dict(LinearDeflection=0.004, AngularDeflection=0.2, Relative=False)
+FOUND_WITHIN = {"fine": 0.01, "coarse": 0.05, "cad": 0.01}  # relative error of the found radius (the issue's bars)
 DEVIATION = 0.01                              # / r: the issue's bar, both ways
 # name -> (builder, r0, larger radius, smaller radius)
 SHAPES = {
@@ -49,6 +52,8 @@ def case_at(name, r):
 @functools.lru_cache(maxsize=None)
 def rounded_mesh(name, variant):
     r0 = SHAPES[name][1]
+    if variant == "cad":
+        return MeshPart.meshFromShape(Shape=case_at(name, r0).reference, **CAD_MESH)
     return MeshPart.meshFromShape(Shape=case_at(name, r0).reference, MaxLength=MAX_LENGTH[variant] * r0)
 
 
@@ -76,7 +81,7 @@ def assert_sound_and_local(row):
     assert row["far_vertices_lost"] == 0 and row["far_facets_lost"] == 0 and row["far_facets_added"] == 0, row
 
 
-RUNS = [(n, v) for n in SHAPES for v in MAX_LENGTH]
+RUNS = [(n, v) for n in SHAPES for v in FOUND_WITHIN]
 
 
 @pytest.mark.parametrize("name,variant", RUNS)
@@ -112,7 +117,7 @@ def test_new_radius_against_occt(name, variant, which):
     assert_sound_and_local(row)
 
 
-@pytest.mark.parametrize("name,variant", [("box", "coarse"), ("lchannel", "coarse"), ("draft_shoulder", "fine")])
+@pytest.mark.parametrize("name,variant", [("box", "coarse"), ("lchannel", "coarse"), ("draft_shoulder", "fine"), ("lchannel", "cad")])
 def test_sharpen_then_original_radius_returns_the_input(name, variant):
     r0 = SHAPES[name][1]
     old, mesh = case_at(name, r0), rounded_mesh(name, variant)
@@ -127,7 +132,10 @@ def test_sharpen_then_original_radius_returns_the_input(name, variant):
     P = reference.surface_samples(V1, F1)
     P = P[chain.distance(P) <= 2 * r0]
     own = reference.TriangleSet(V0, F0, 0.2 * r0).distance(P).max()
-    sag = r0 * (1 - math.cos(math.asin(min(1.0, MAX_LENGTH[variant] / 2))))  # an input chord's sag on the round
+    if variant == "cad":
+        sag = CAD_MESH["LinearDeflection"]  # the tessellation's own chordal deflection
+    else:
+        sag = r0 * (1 - math.cos(math.asin(min(1.0, MAX_LENGTH[variant] / 2))))  # an input chord's sag on the round
     assert own <= r0 / 100 + sag + reference.MEASURE * r0
 
 
@@ -297,6 +305,23 @@ def test_s_chain_on_a_finer_mesh_against_occt():
     assert_sound_and_local(row)
 
 
+@pytest.mark.parametrize("r1", [6.0, 3.2])
+def test_s_chain_on_a_cad_mesh_against_occt(r1):
+    """The S plate's CAD tessellation (CAD_MESH: the straight runs in facets their whole length, the arcs in
+    strips): found at 4 mm within 1 % and made 6 and 3.2 mm within 0.01 r of OCCT's fillet both ways (0.0058 /
+    0.0055 measured), sound, nothing beyond the reach touched. It was refused as not a round between two flat
+    sides: the wall, curved in plan, is flooded with the round, and its level normals passed for a straight
+    round's turning about the vertical (strip.cpp turning_axis)."""
+    old = s_case(S_R0)
+    mesh = MeshPart.meshFromShape(Shape=old.reference, **CAD_MESH)
+    res = MeshRound.change_radius(mesh, [seed_on_round(old)], r1)
+    strip = res.report["strips"][0]
+    assert abs(strip["found_radius"] - S_R0) <= 0.01 * S_R0 and "curved along the round" in strip["recognised"], strip
+    row = reference.score(s_case(r1), mesh, res.mesh, res.report)
+    assert row["dev_out_to_ref"] <= DEVIATION and row["dev_ref_to_out"] <= DEVIATION, row
+    assert_sound_and_local(row)
+
+
 LOOP_R0 = 3.0  # cases.pocket_rim: the top rim of a 25 mm radius circular pocket, filleted by OCCT (a torus)
 
 
@@ -307,6 +332,8 @@ def loop_case(r):
 
 @functools.lru_cache(maxsize=None)
 def loop_mesh(variant):
+    if variant == "cad":
+        return MeshPart.meshFromShape(Shape=loop_case(LOOP_R0).reference, **CAD_MESH)
     return MeshPart.meshFromShape(Shape=loop_case(LOOP_R0).reference, MaxLength=MAX_LENGTH[variant] * LOOP_R0)
 
 
@@ -335,18 +362,18 @@ def test_a_round_all_around_a_loop_is_found_and_sharpened(variant):
     topology_sound(res.mesh)
 
 
-@pytest.mark.parametrize("variant", ["fine", "coarse"])
-@pytest.mark.parametrize("r1", [4.5, 1.8])
+@pytest.mark.parametrize("variant,r1", [("fine", 4.5), ("fine", 1.8), ("coarse", 4.5), ("coarse", 1.8), ("cad", 1.8)])
 def test_a_round_all_around_a_loop_made_larger_and_smaller_against_occt(variant, r1):
     """The rim's 3 mm round made 4.5 and 1.8 mm: against OCCT's fillet of the sharp block at r1 both ways, sound,
     nothing beyond the reach touched: fine within the issue's 0.01 r1 (0.0048 / 0.0068 r measured; 0.0051 / 0.0129
-    while each vertex took its station's tangent plane); coarse within 0.02 r1 (0.008 / 0.017 measured): the
+    while each vertex took its station's tangent plane), the CAD mesh too (1.8 mm: 0.0064 measured; 4.5 mm,
+    0.0051, is left out for time); coarse within 0.02 r1 (0.008 / 0.017 measured): the
     issue's coarse bar is the input's own chordal error, and the bore's 2.1 mm chords stand 0.022 mm (0.012 r of
     1.8) off it, with the tolerance 0.01 r on top."""
     mesh = loop_mesh(variant)
     res = MeshRound.change_radius(mesh, [seed_on_round(loop_case(LOOP_R0))], r1)
     row = reference.score(loop_case(r1), mesh, res.mesh, res.report)
-    bound = DEVIATION if variant == "fine" else 0.02
+    bound = 0.02 if variant == "coarse" else DEVIATION
     assert row["dev_out_to_ref"] <= bound and row["dev_ref_to_out"] <= bound, row
     assert_sound_and_local(row)
 
