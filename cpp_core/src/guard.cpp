@@ -9,6 +9,7 @@
 #include <iterator>
 #include <string>
 #include <cmath>
+#include <functional>
 #include <unordered_map>
 #include <unordered_set>
 #include <vector>
@@ -148,6 +149,65 @@ void check_new_boundary(const MeshEdit& edit, const std::vector<std::uint64_t>& 
     if (!rule.allows(key))
       report_new_flaw(edit, was, edge_middle(edit, key), reach, "a new boundary edge, a hole in the mesh",
                       "the mesh is open (a hole in it) where the rounding goes, at ", "fill the hole first");
+}
+
+// The mesh's edges (boundary loops) through the band: the loops of `local` (the boundary edges with an end
+// among the changed vertices, before or after) closed up by the input's boundary outside the band (walked
+// from each place a loop leaves the band to where it comes back). Returns the number of loops and, in
+// *pinched, whether a vertex has more than two boundary edges; -1 where the input's boundary outside the
+// band is itself pinched (not judged).
+int boundary_loops(const MeshTopology& in, const std::vector<std::uint64_t>& local, const std::unordered_set<int>& changed, bool* pinched) {
+  std::unordered_map<int, int> parent, degree;
+  std::function<int(int)> root = [&](int v) {
+    auto it = parent.find(v);
+    if (it == parent.end()) return parent[v] = v;
+    return it->second == v ? v : it->second = root(it->second);
+  };
+  auto unite = [&](int a, int b) { parent[root(a)] = root(b); };
+  std::unordered_map<int, int> local_neighbour;  // a loop's last vertex before the input's own boundary
+  for (std::uint64_t key : local) {
+    const int a = int(key >> 32), b = int(key & 0xffffffffu);
+    unite(a, b), ++degree[a], ++degree[b];
+    local_neighbour[a] = b, local_neighbour[b] = a;
+  }
+  *pinched = false;
+  for (const auto& [v, d] : degree) *pinched |= d > 2;
+  std::unordered_set<int> walked;
+  for (const auto& [v, d] : degree) {
+    if (d != 1 || changed.count(v) || !walked.insert(v).second) continue;
+    int prev = local_neighbour[v], cur = v;
+    for (int steps = 0; steps <= in.num_vertices(); ++steps) {
+      int next = -1, count = 0;
+      for (int w : in.vertex_neighbours(cur))
+        if (w != prev && in.edge_facets(cur, w).size() == 1) next = w, ++count;
+      if (count != 1) return -1;
+      if (changed.count(next)) {  // back at the band: cur ends a local piece
+        unite(v, cur), walked.insert(cur);
+        break;
+      }
+      prev = cur, cur = next;
+    }
+  }
+  std::unordered_set<int> roots;
+  for (const auto& [v, d] : degree) roots.insert(root(v));
+  return int(roots.size());
+}
+
+// The mesh's edge neither split nor pinched: a band along it may leave a sliver of a hole between its end
+// profile and the input's edge, each of its edges allowed by the rule above (found by fuzzing: an open
+// tube's ragged edge, a tolerance larger than the element).
+void check_boundary_loops(const MeshEdit& edit, const std::vector<std::uint64_t>& was, const std::vector<std::uint64_t>& is,
+                          const std::unordered_set<int>& changed) {
+  if (is.empty()) return;
+  bool pinched_before = false, pinched_after = false;
+  const int before = boundary_loops(edit.input, was, changed, &pinched_before);
+  const int after = boundary_loops(edit.input, is, changed, &pinched_after);
+  if (before < 0 || after < 0) return;
+  std::vector<std::uint64_t> fresh;  // (named at a boundary edge the rounding made, if any)
+  std::set_difference(is.begin(), is.end(), was.begin(), was.end(), std::back_inserter(fresh));
+  const Vec3 at = edge_middle(edit, fresh.empty() ? is.front() : fresh.front());
+  if (after > before) refuse("the mesh's edge split into more loops (" + std::to_string(before) + " -> " + std::to_string(after) + "): a new hole", at);
+  if (pinched_after && !pinched_before) refuse("the mesh's edge pinched at a vertex", at);
 }
 
 // ---------------------------------------------------------------------------------- facet crossings
@@ -396,6 +456,7 @@ void check_result(const MeshEdit& edit, const SharpChain& chain, double reach, d
 
   const EdgeFlaws was = edge_flaws(before, changed), is = edge_flaws(after, changed);
   check_new_boundary(edit, was.boundary, is.boundary, BoundaryRule(edit, was.boundary, chain, reach, tolerance, slack), reach);
+  check_boundary_loops(edit, was.boundary, is.boundary, changed);
   check_new_flaws(edit, was.non_manifold, is.non_manifold, reach, "a new non-manifold edge, shared by more than two facets",
                   "the mesh is non-manifold (an edge shared by more than two facets) where the rounding goes, at ");
   check_new_flaws(edit, was.misoriented, is.misoriented, reach, "new facets facing the other way from their neighbours",
