@@ -4,7 +4,8 @@
 //
 // Checks, each against the input's own state there (a flaw the input already had is not the result's):
 // - edges: no new boundary edge but a piece of an input boundary edge or, where the mesh boundary stops the
-//   chain, its end profile (which becomes the mesh's edge there); no new non-manifold edge, no new edge whose
+//   chain, its end profile (which becomes the mesh's edge there), and no more loops of the mesh's edge through
+//   the band than before nor a boundary vertex pinched; no new non-manifold edge, no new edge whose
 //   two facets disagree in orientation (over every edge with an end on a changed facet: all other edges are
 //   untouched);
 // - facets: no degenerate made facet (a repeated vertex or an angle under kDegenerateDeg);
