@@ -24,10 +24,10 @@ void remove_cap_corner(const MeshTopology& mesh, const BaseMeshes& base, int cor
   // At an end cut by its end face (st.cut) the region lies in the face's plane: a point there is taken
   // back along the chain onto the ball's section, where the region is the circle's.
   auto in_corner_region = [&](const Vec3& q, bool closed) {
-    if (st.cut.active && std::abs(st.cut.past(q)) > 1e-3 * r) return false;
+    if (st.cut.active && std::abs(st.cut.past(q)) > kOnCapPlaneShare * r) return false;
     const Vec3 p = st.cut.active ? Vec3(q - st.cut.along * (q - st.centre).dot(st.cut.along)) : q;
     const Vec3 d = p - st.centre;
-    if (std::abs(d.dot(plane_normal)) > 1e-3 * r) return false;
+    if (std::abs(d.dot(plane_normal)) > kOnCapPlaneShare * r) return false;
     const Eigen::Vector2d ab = gram_inv * (basis.transpose() * d);
     const double e = closed ? -eps : eps;
     if (closed && ((p - st.contact[0]).norm() < 1e-6 * r || (p - st.contact[1]).norm() < 1e-6 * r)) return false;
@@ -46,7 +46,8 @@ void remove_cap_corner(const MeshTopology& mesh, const BaseMeshes& base, int cor
     for (int k = 0; k < 3; ++k)
       if (mesh.F(f, k) == corner) samples.push_back(mesh.point(corner) + 0.02 * (g - mesh.point(corner)));
     // (At an end cut by a plane, only the end face's facets in that plane: not a face that merely meets it.)
-    if (st.cut.active && !(std::abs(st.cut.past(p0)) <= 1e-3 * r && std::abs(st.cut.past(p1)) <= 1e-3 * r && std::abs(st.cut.past(p2)) <= 1e-3 * r))
+    const double on = kOnCapPlaneShare * r;
+    if (st.cut.active && !(std::abs(st.cut.past(p0)) <= on && std::abs(st.cut.past(p1)) <= on && std::abs(st.cut.past(p2)) <= on))
       continue;
     const bool vertex_in = in_corner_region(p0, true) || in_corner_region(p1, true) || in_corner_region(p2, true);
     if (!vertex_in && std::none_of(samples.begin(), samples.end(), strictly_inside)) continue;
