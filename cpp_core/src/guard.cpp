@@ -151,12 +151,39 @@ void check_new_boundary(const MeshEdit& edit, const std::vector<std::uint64_t>& 
                       "the mesh is open (a hole in it) where the rounding goes, at ", "fill the hole first");
 }
 
-// The mesh's edges (boundary loops) through the band: the loops of `local` (the boundary edges with an end
-// among the changed vertices, before or after) closed up by the input's boundary outside the band (walked
-// from each place a loop leaves the band to where it comes back). Returns the number of loops and, in
-// *pinched, whether a vertex has more than two boundary edges; -1 where the input's boundary outside the
-// band is itself pinched (not judged).
-int boundary_loops(const MeshTopology& in, const std::vector<std::uint64_t>& local, const std::unordered_set<int>& changed, bool* pinched) {
+// Where the mesh's edge leaves the band and comes back: each pair of unchanged vertices joined by the input's
+// boundary outside the band (walked once; the same before and after the rounding). False where that
+// boundary is itself pinched (not judged).
+using Arc = std::pair<int, int>;
+bool arcs_outside(const MeshTopology& in, const std::vector<std::uint64_t>& local, const std::unordered_set<int>& changed,
+                  std::vector<Arc>& arcs) {
+  std::unordered_map<int, int> degree, neighbour;  // neighbour: a piece's last vertex in the band
+  for (std::uint64_t key : local) {
+    const int a = int(key >> 32), b = int(key & 0xffffffffu);
+    ++degree[a], ++degree[b], neighbour[a] = b, neighbour[b] = a;
+  }
+  std::unordered_set<int> walked;
+  for (const auto& [v, d] : degree) {
+    if (d != 1 || changed.count(v) || !walked.insert(v).second) continue;
+    int prev = neighbour[v], cur = v;
+    for (int steps = 0; steps <= in.num_vertices(); ++steps) {
+      int next = -1, count = 0;
+      for (int w : in.vertex_neighbours(cur))
+        if (w != prev && in.edge_facets(cur, w).size() == 1) next = w, ++count;
+      if (count != 1) return false;
+      if (changed.count(next)) {  // back at the band: cur ends a piece
+        arcs.push_back({v, cur}), walked.insert(cur);
+        break;
+      }
+      prev = cur, cur = next;
+    }
+  }
+  return true;
+}
+
+// The loops of the mesh's edge through the band: the boundary edges `local` (an end among the changed
+// vertices) closed up by `arcs`; *pinched: a vertex with more than two boundary edges.
+int boundary_loops(const std::vector<std::uint64_t>& local, const std::vector<Arc>& arcs, bool* pinched) {
   std::unordered_map<int, int> parent, degree;
   std::function<int(int)> root = [&](int v) {
     auto it = parent.find(v);
@@ -164,30 +191,13 @@ int boundary_loops(const MeshTopology& in, const std::vector<std::uint64_t>& loc
     return it->second == v ? v : it->second = root(it->second);
   };
   auto unite = [&](int a, int b) { parent[root(a)] = root(b); };
-  std::unordered_map<int, int> local_neighbour;  // a loop's last vertex before the input's own boundary
   for (std::uint64_t key : local) {
     const int a = int(key >> 32), b = int(key & 0xffffffffu);
     unite(a, b), ++degree[a], ++degree[b];
-    local_neighbour[a] = b, local_neighbour[b] = a;
   }
   *pinched = false;
   for (const auto& [v, d] : degree) *pinched |= d > 2;
-  std::unordered_set<int> walked;
-  for (const auto& [v, d] : degree) {
-    if (d != 1 || changed.count(v) || !walked.insert(v).second) continue;
-    int prev = local_neighbour[v], cur = v;
-    for (int steps = 0; steps <= in.num_vertices(); ++steps) {
-      int next = -1, count = 0;
-      for (int w : in.vertex_neighbours(cur))
-        if (w != prev && in.edge_facets(cur, w).size() == 1) next = w, ++count;
-      if (count != 1) return -1;
-      if (changed.count(next)) {  // back at the band: cur ends a local piece
-        unite(v, cur), walked.insert(cur);
-        break;
-      }
-      prev = cur, cur = next;
-    }
-  }
+  for (const auto& [a, b] : arcs) unite(a, b);
   std::unordered_set<int> roots;
   for (const auto& [v, d] : degree) roots.insert(root(v));
   return int(roots.size());
@@ -198,11 +208,10 @@ int boundary_loops(const MeshTopology& in, const std::vector<std::uint64_t>& loc
 // tube's ragged edge, a tolerance larger than the element).
 void check_boundary_loops(const MeshEdit& edit, const std::vector<std::uint64_t>& was, const std::vector<std::uint64_t>& is,
                           const std::unordered_set<int>& changed) {
-  if (is.empty()) return;
+  std::vector<Arc> arcs;
+  if (is.empty() || !arcs_outside(edit.input, was, changed, arcs)) return;
   bool pinched_before = false, pinched_after = false;
-  const int before = boundary_loops(edit.input, was, changed, &pinched_before);
-  const int after = boundary_loops(edit.input, is, changed, &pinched_after);
-  if (before < 0 || after < 0) return;
+  const int before = boundary_loops(was, arcs, &pinched_before), after = boundary_loops(is, arcs, &pinched_after);
   std::vector<std::uint64_t> fresh;  // (named at a boundary edge the rounding made, if any)
   std::set_difference(is.begin(), is.end(), was.begin(), was.end(), std::back_inserter(fresh));
   const Vec3 at = edge_middle(edit, fresh.empty() ? is.front() : fresh.front());
