@@ -479,18 +479,29 @@ void check_result(const MeshEdit& edit, const SharpChain& chain, double reach, d
     if (!in_box(p)) refuse("a new vertex beyond the faces it rounds", p);
   for (const auto& moved : edit.moved)
     if (!in_box(moved.second)) refuse("a moved vertex beyond the faces it rounds", moved.second);
-  // Every made facet reaches back into the band (as the trim's points are admitted).
-  auto within_reach = [&](int v) {
-    double d;
-    chain.project(edit.point(v), &d);
-    if (d <= reach + margin) return true;
+  // Every made facet reaches back into the band (as the trim's points are admitted), or into an input facet
+  // the band cut: the gap such a facet leaves is filled from its corners, which lie up to its size beyond
+  // the reach (a 2 mm end face facet at a 0.02 mm round's end).
+  auto from_chains = [&](const Vec3& p) {
+    double d, nearest;
+    chain.project(p, &nearest);
     if (network)
       for (const SharpChain& other : *network) {
-        other.project(edit.point(v), &d);
-        if (d <= reach + margin) return true;
+        other.project(p, &d);
+        nearest = std::min(nearest, d);
       }
-    return false;
+    return nearest;
   };
+  double cut_size = 0;
+  for (int f : edit.removed) {
+    double size = 0, nearest = INFINITY;
+    for (int k = 0; k < 3; ++k) {
+      size = std::max(size, (in.corner(f, (k + 1) % 3) - in.corner(f, k)).norm());
+      nearest = std::min(nearest, from_chains(in.corner(f, k)));
+    }
+    if (nearest <= reach + margin) cut_size = std::max(cut_size, size);
+  }
+  auto within_reach = [&](int v) { return from_chains(edit.point(v)) <= reach + cut_size + margin; };
   for (const Facet& f : edit.added)
     if (!within_reach(f[0]) && !within_reach(f[1]) && !within_reach(f[2]))
       refuse("a new facet wholly beyond the reach", (edit.point(f[0]) + edit.point(f[1]) + edit.point(f[2])) / 3);

@@ -10,7 +10,8 @@
 //   untouched);
 // - facets: no degenerate made facet (a repeated vertex or an angle under kDegenerateDeg);
 // - placement: every new or moved vertex finite and within the box of the input facets around the band (a round
-//   never leaves the faces it rounds), and every made facet with a corner within `reach` of the chain;
+//   never leaves the faces it rounds), and every made facet with a corner within `reach` of the chain (plus the size of
+//   the largest input facet the band cut: its gap is filled from its corners);
 // - self-intersection: no made facet crosses another made facet or a kept facet near it.
 // A failure throws RoundingError(result_invalid) naming the check and the place.
 #pragma once

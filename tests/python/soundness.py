@@ -1,9 +1,11 @@
 """Is a rounded mesh sound against its input?  The checks an engineer makes before sending a tool mesh
-to a solver, measured independently of the engine (numpy edge tables, FreeCAD's self-intersection test).
+to a solver, measured independently of the engine (numpy edge tables, FreeCAD's self-intersection test confirmed exactly).
 
     problems = soundness.problems(V0, F0, V1, F1)    # [] when sound, else one line per failed check
     problems = soundness.problems(V0, F0, V1, F1, open_ends=[(point, distance)])  # a round off the mesh's edge
 """
+from fractions import Fraction
+
 import numpy as np
 from scipy.spatial import cKDTree
 
@@ -70,4 +72,44 @@ def _new_boundary_points(V0, t0, V1, t1, open_ends):
 
 
 def _self_intersects(V, F):
-    return bool(meshconv.arrays_to_mesh(np.asarray(V, dtype=float), np.asarray(F)).hasSelfIntersections())
+    """Whether two facets of the mesh, stored as FreeCAD stores it (float32), share a point without sharing a
+    vertex. FreeCAD's test (Moller's, in float32, with a fixed 1e-6 on unnormalised plane distances) finds the
+    candidate pairs; each is confirmed in exact arithmetic, since below a facet size of ~0.05 mm that fixed
+    epsilon takes facets apart by up to their own size as coplanar and reports them crossing."""
+    mesh = meshconv.arrays_to_mesh(np.asarray(V, dtype=float), np.asarray(F))
+    if not mesh.hasSelfIntersections():
+        return False
+    facets = mesh.Facets
+
+    def meet(pair):
+        s, t = facets[pair[0]], facets[pair[1]]
+        if set(s.PointIndices) & set(t.PointIndices):
+            return True  # (FreeCAD skips neighbours; counted as crossing, should one come)
+        return _triangles_meet(*[[tuple(Fraction(float(c)) for c in p) for p in f.Points] for f in (s, t)])
+    return any(meet(pair) for pair in mesh.getSelfIntersections())
+
+
+def _triangles_meet(T, U):
+    """Exact separating-axis test of two triangles (rational coordinates): no axis among the normals, the
+    edge-edge crosses and the in-plane edge normals separates them (touching counts as meeting)."""
+    def sub(a, b):
+        return (a[0] - b[0], a[1] - b[1], a[2] - b[2])
+
+    def cross(a, b):
+        return (a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0])
+
+    def dot(a, b):
+        return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+
+    edges_t = [sub(T[(i + 1) % 3], T[i]) for i in range(3)]
+    edges_u = [sub(U[(i + 1) % 3], U[i]) for i in range(3)]
+    normals = [cross(edges_t[0], edges_t[1]), cross(edges_u[0], edges_u[1])]
+    axes = normals + [cross(e, f) for e in edges_t for f in edges_u]
+    axes += [cross(normals[0], e) for e in edges_t] + [cross(normals[1], f) for f in edges_u]
+    for axis in axes:
+        if axis == (0, 0, 0):
+            continue
+        t, u = [dot(axis, p) for p in T], [dot(axis, p) for p in U]
+        if max(t) < min(u) or max(u) < min(t):
+            return False
+    return True

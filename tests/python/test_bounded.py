@@ -11,8 +11,9 @@ import pytest
 import cases  # noqa: F401  (first: it puts FreeCAD's modules on the path)
 import FreeCAD
 import MeshRound
-from MeshRound import api, meshconv
-from conftest import BOX_SEED
+from MeshRound import api, meshconv, reround
+import soundness
+from conftest import BOX_SEED, grid_box
 
 
 @pytest.fixture(scope="module")
@@ -20,11 +21,11 @@ def arrays(box):
     return meshconv.mesh_to_arrays(box)
 
 
-def refused(arrays, code, **kw):
+def refused(arrays, code, seed=BOX_SEED, **kw):
     V, F = arrays
     V0, F0 = V.copy(), F.copy()
     with pytest.raises(MeshRound.RoundingError) as err:
-        api.round_arrays(V, F, BOX_SEED, **kw)
+        api.round_arrays(V, F, seed, **kw)
     assert err.value.code == code, str(err.value)
     assert np.array_equal(V, V0) and np.array_equal(F, F0)  # the input is untouched
     return str(err.value)
@@ -95,3 +96,20 @@ def test_radius_far_below_the_element_size_rounds_soundly(arrays):
     rep = res.report
     assert 0 < rep["facets_added"] < 2_000_000
     assert rep["max_deviation"] <= 0.05 / 100 * 1.01
+
+
+def test_the_smallest_radius_that_works_makes_a_sound_mesh_as_stored():
+    # A 10 mm length of the box's edge on a structured grid: 0.006 mm is its smallest radius (100 x 1e-6 x
+    # 60 mm). The end caps are facets of a few thousandths of a mm cut into the end faces' 2 mm facets,
+    # checked as FreeCAD stores them (float32) and confirmed exactly (soundness).
+    V, F = grid_box(2.0, (10.0, 60.0, 40.0))
+    seed = FreeCAD.Vector(5, 60, 40)
+    refused((V, F), "radius_too_small", seed, radius=0.0059)
+    radius = 0.006
+    res = api.round_arrays(V, F, seed, radius=radius)
+    assert soundness.problems(V, F, res.vertices, res.triangles) == []
+    # and from that round to a larger one, and back to the smallest
+    larger = reround.change_radius_arrays(res.vertices, res.triangles, seed, radius=2.0)
+    assert soundness.problems(V, F, larger.vertices, larger.triangles) == []
+    again = reround.change_radius_arrays(larger.vertices, larger.triangles, seed, radius=radius)
+    assert soundness.problems(V, F, again.vertices, again.triangles) == []
