@@ -1,14 +1,16 @@
 #!/usr/bin/env bash
 # The whole test suite: C++ unit tests (GoogleTest via ctest), then the Python tests (engine through
 # Python, FreeCAD headless, the CLI) and the GUI tests (real FreeCAD under Xvfb), all with pytest; then
-# two minutes of fuzzing (tools/fuzz.sh 60).
+# a minute of fuzzing on each of three targets (tools/fuzz.sh 60).
 # Exits non-zero on any failure.
 set -euo pipefail
 ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 "$ROOT/tools/setup.sh"
 cd "$ROOT"
 ctest --test-dir build --output-on-failure -j2
-/usr/bin/python3 -m pytest -q -p no:cacheprovider tests
+# Two workers, each test file on one of them (a file's fixtures -- meshes, OCCT references, the GUI session
+# -- are made once).
+/usr/bin/python3 -m pytest -q -p no:cacheprovider -n 2 --dist loadfile tests
 # A bounded fuzzing pass (tools/fuzz.sh), clang-14 + ASan + UBSan: 60 s on each target. The array
 # boundary's and the deck readers' targets must come back clean; the engine's still finds the open faults listed in
 # tests/fuzz/regressions/README.md, so its pass prints what it finds without failing the suite.

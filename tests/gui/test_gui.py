@@ -46,7 +46,10 @@ def run_gui_macro(home, **extra_env):
     env = dict(os.environ, FREECAD_USER_HOME=str(home), QTWEBENGINE_CHROMIUM_FLAGS="--no-sandbox",
                MESHROUND_GUI_RESULT=str(result), MESHROUND_GUI_ARTIFACTS=ARTIFACTS, MESHROUND_GUI_DIR=HERE,
                **extra_env)
-    run = run_in_own_session(["xvfb-run", "-a", "-s", "-screen 0 1280x1024x24", "freecad",
+    # `-a` takes the first free display from -n on; each pytest-xdist worker starts its search 100 apart, so
+    # two workers' servers never race for the same display.
+    first_display = 99 + 100 * int(os.environ.get("PYTEST_XDIST_WORKER", "gw0")[2:] or 0)
+    run = run_in_own_session(["xvfb-run", "-a", "-n", str(first_display), "-s", "-screen 0 1280x1024x24", "freecad",
                               os.path.join(HERE, "gui_macro.py")], env)
     assert result.exists(), (f"the macro wrote no result\nstdout:\n{run.stdout[-3000:]}"
                              f"\nstderr:\n{run.stderr[-3000:]}")
