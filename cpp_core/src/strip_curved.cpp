@@ -239,8 +239,19 @@ void recognise_curved(const MeshTopology& mesh, Facets& fx, int f0, const std::v
     const int a = mesh.F(f, k), b = mesh.F(f, (k + 1) % 3);
     const int side = g >= 0 ? side_of(g) : -1;
     // (a facet turning like neither side joins while it turns by less than kJoinDeg: a mesher's folded
-    // sliver on a seam between two round faces turns by a little over strip_turn_deg)
-    if (g >= 0 && side < 0 && angle_deg(fx.normal(f), fx.normal(g)) < std::max(o.strip_turn_deg, kJoinDeg)) return true;
+    // sliver on a seam between two round faces turns by a little over strip_turn_deg; from a cap -- a
+    // seam's facet with its corners nearly in a line, between a round's straight part and its torus around
+    // a wall corner, its normal 130 degrees off its neighbours' -- the turn is measured from the strip's
+    // facets beside the cap instead)
+    if (g >= 0 && side < 0) {
+      const double join = std::max(o.strip_turn_deg, kJoinDeg);
+      if (angle_deg(fx.normal(f), fx.normal(g)) < join) return true;
+      if (fx.cap(f))
+        for (int j = 0; j < 3; ++j) {
+          const int h = fx.across(f, j);
+          if (h >= 0 && h != g && strip.facet_set.count(h) && !fx.cap(h) && angle_deg(fx.normal(h), fx.normal(g)) < join) return true;
+        }
+    }
     if (side >= 0 && fx.smooth(f, g)) {
       for (int v : {a, b}) strip.role[v] = side ? StripRole::BorderB : StripRole::BorderA;
       if (side) border_b.push_back({a, g}), border_b.push_back({b, g}), border_edges.push_back({f, k});

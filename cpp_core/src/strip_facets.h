@@ -54,6 +54,16 @@ class Facets {
     return true;
   }
   Vec3 centroid(int f) const { return (mesh_.corner(f, 0) + mesh_.corner(f, 1) + mesh_.corner(f, 2)) / 3; }
+  // A cap: a facet with an angle of kCapDeg or more, its three corners nearly on one line (a mesher's facet
+  // across the seam of two faces): its normal says little of the surface there.
+  static constexpr double kCapDeg = 150;
+  bool cap(int f) const {
+    for (int k = 0; k < 3; ++k) {
+      const Vec3 u = mesh_.corner(f, (k + 1) % 3) - mesh_.corner(f, k), w = mesh_.corner(f, (k + 2) % 3) - mesh_.corner(f, k);
+      if (std::atan2(u.cross(w).norm(), u.dot(w)) >= kCapDeg * M_PI / 180) return true;
+    }
+    return false;
+  }
   double area(int f) const { return 0.5 * (mesh_.corner(f, 1) - mesh_.corner(f, 0)).cross(mesh_.corner(f, 2) - mesh_.corner(f, 0)).norm(); }
 
  private:

@@ -176,6 +176,19 @@ def pocket_rim_walls(draft_deg=0.0):
     return build
 
 
+def pocket_rim_round_walls(wall_radius=6.0):
+    """The rim of a rectangular pocket whose four wall corners are rounded (OCCT, wall_radius): one smooth
+    chain all around, straight along the walls and arcs around their corners (a rim round on it rolls on
+    around each wall corner as a torus)."""
+    def build():
+        s = pocket_block()
+        vertical = [e for e in edges_where(s, lambda p: 19 < p.x < 61 and 14 < p.y < 46 and 17.9 < p.z < 30.1)
+                    if abs(e.Vertexes[0].Point.z - e.Vertexes[1].Point.z) > 5]
+        s = s.makeFillet(wall_radius, vertical).removeSplitter()
+        return s, edges_where(s, lambda p: abs(p.z - 30) < TOL and 19 < p.x < 61 and 14 < p.y < 46)
+    return build
+
+
 def pocket_all(draft_deg=0.0):
     """Every edge of a rectangular pocket: the rim, the wall corners and the floor (at the floor's corners
     three concave rounds meet in a sphere)."""
