@@ -22,10 +22,11 @@ constexpr double kStationTurnDeg = 15;  // largest turn of the corner line betwe
 constexpr double kJoinDeg = 80;         // see recognise_curved's flood
 
 // The stations of a round all around a loop, in order: each next one at most kLoopGap times the median
-// spacing away (else the nearest-next ordering skipped one and came back for it), and the corner line
-// turning by kStationTurnDeg at most between any two in a row, the last and the first included.
+// spacing away (else the nearest-next ordering skipped one and came back for it; not asked of stations
+// `walked` in order along the border, order_around), and the corner line turning by kStationTurnDeg at
+// most between any two in a row, the last and the first included.
 constexpr double kLoopGap = 3;
-void close_loop(const std::vector<StripFrame>& station, const Vec3& where) {
+void close_loop(const std::vector<StripFrame>& station, const Vec3& where, bool walked) {
   const size_t n = station.size();
   if (n < 6) not_a_round("it runs all around a loop of " + std::to_string(n) + " stations only (too few to follow it)", where);
   std::vector<double> gap(n);
@@ -34,7 +35,7 @@ void close_loop(const std::vector<StripFrame>& station, const Vec3& where) {
   std::nth_element(sorted.begin(), sorted.begin() + long(n / 2), sorted.end());
   for (size_t i = 0; i < n; ++i) {
     const StripFrame &a = station[i], &b = station[(i + 1) % n];
-    if (gap[i] > kLoopGap * sorted[n / 2])
+    if (!walked && gap[i] > kLoopGap * sorted[n / 2])
       not_a_round("its corner line, all around a loop, is not followed evenly at " + format_point(a.corner), where);
     const double turn = std::acos(std::min(1.0, std::abs(a.axis.dot(b.axis)))) / kDeg;
     if (turn > kStationTurnDeg)
@@ -171,6 +172,40 @@ void order_along(std::vector<StripFrame>& station, std::vector<int>& vertex) {
   }
 }
 
+
+// The stations of a round all around a loop in the order their border vertices come along border B (its
+// edges `border_edges`, each (strip facet, edge)): right however unevenly they are spaced (a CAD mesh's
+// wall: one long facet along a straight stretch between arcs of short ones, where the nearest next station
+// lies on across the arc). False (nothing changed) where border B is not one loop through every station.
+bool order_around(const MeshTopology& mesh, const std::vector<std::pair<int, int>>& border_edges, std::vector<StripFrame>& station,
+                  std::vector<int>& vertex) {
+  std::unordered_map<int, std::vector<int>> next;
+  for (const auto& [f, k] : border_edges) {
+    const int a = mesh.F(f, k), b = mesh.F(f, (k + 1) % 3);
+    next[a].push_back(b), next[b].push_back(a);
+  }
+  for (const auto& [v, around] : next)
+    if (around.size() != 2) return false;
+  std::unordered_map<int, size_t> place;  // border vertex -> its place along the loop
+  for (int prev = -1, v = vertex.front(); place.emplace(v, place.size()).second;) {
+    const auto it = next.find(v);
+    if (it == next.end()) return false;
+    const int go = it->second[0] != prev ? it->second[0] : it->second[1];
+    prev = v, v = go;
+  }
+  if (place.size() != next.size()) return false;
+  std::vector<size_t> order(station.size());
+  for (size_t i = 0; i < order.size(); ++i) {
+    if (!place.count(vertex[i])) return false;
+    order[i] = i;
+  }
+  std::sort(order.begin(), order.end(), [&](size_t i, size_t j) { return place.at(vertex[i]) < place.at(vertex[j]); });
+  std::vector<StripFrame> s2;
+  std::vector<int> v2;
+  for (size_t i : order) s2.push_back(station[i]), v2.push_back(vertex[i]);
+  station.swap(s2), vertex.swap(v2);
+  return true;
+}
 
 void recognise_curved(const MeshTopology& mesh, Facets& fx, int f0, const std::vector<int>& flood, const std::vector<int>& beside,
                       const SharpenOptions& o, const Vec3& where, RoundStrip& strip, std::vector<std::pair<int, int>>& end_edges) {
@@ -329,10 +364,11 @@ void recognise_curved(const MeshTopology& mesh, Facets& fx, int f0, const std::v
     F.corner = frame_solve(F.normal[0], F.normal[1], F.axis, Vec3(F.offset[0], F.offset[1], F.axis.dot(mesh.point(b))));
     station.push_back(F), station_vertex.push_back(b);
   }
-  order_along(station, station_vertex);
+  const bool walked = closed && order_around(mesh, border_edges, station, station_vertex);
+  if (!walked) order_along(station, station_vertex);
   // A loop: its corner line must close up evenly (no station skipped by the ordering) and turn by
   // kStationTurnDeg at most from each station to the next, the last to the first included.
-  if (closed) close_loop(station, where);
+  if (closed) close_loop(station, where, walked);
   std::vector<int> run_vertex = station_vertex;  // the border B vertex of each station kept
   // The run of stations through the seed's whose corner line turns by kStationTurnDeg at most from one to
   // the next; stations beyond it at an end (an end face's facets across a sliver) are dropped.
@@ -379,8 +415,8 @@ void recognise_curved(const MeshTopology& mesh, Facets& fx, int f0, const std::v
     std::vector<Vec3> border;
     for (const int v : run_vertex) border.push_back(mesh.point(v));
     smooth_tilts(station, border, closed);
-    order_along(station, run_vertex);  // a corrected corner may change places with its neighbour
-    if (closed) close_loop(station, where);
+    if (!walked) order_along(station, run_vertex);  // a corrected corner may change places with its neighbour
+    if (closed) close_loop(station, where, walked);
   }
   for (size_t i = 0; i < station.size(); ++i) {
     StripFrame& F = station[i];
