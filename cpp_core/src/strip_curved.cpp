@@ -23,9 +23,12 @@ constexpr double kJoinDeg = 80;         // see recognise_curved's flood
 
 // The stations of a round all around a loop, in order: each next one at most kLoopGap times the median
 // spacing away (else the nearest-next ordering skipped one and came back for it; not asked of stations
-// `walked` in order along the border, order_around), and the corner line turning by kStationTurnDeg at
+// `walked` in order along the border, order_around), and the corner line turning by kLoopTurnDeg at
 // most between any two in a row, the last and the first included.
 constexpr double kLoopGap = 3;
+constexpr double kLoopTurnDeg = 25;  // a loop's largest turn between two stations in a row (1.4 mm elements
+                                     // around a pocket's wall corner of R 6 turn it by up to 19 deg; a
+                                     // mitred corner by 90)
 void close_loop(const std::vector<StripFrame>& station, const Vec3& where, bool walked) {
   const size_t n = station.size();
   if (n < 6) not_a_round("it runs all around a loop of " + std::to_string(n) + " stations only (too few to follow it)", where);
@@ -38,7 +41,7 @@ void close_loop(const std::vector<StripFrame>& station, const Vec3& where, bool 
     if (!walked && gap[i] > kLoopGap * sorted[n / 2])
       not_a_round("its corner line, all around a loop, is not followed evenly at " + format_point(a.corner), where);
     const double turn = std::acos(std::min(1.0, std::abs(a.axis.dot(b.axis)))) / kDeg;
-    if (turn > kStationTurnDeg)
+    if (turn > kLoopTurnDeg)
       not_a_round("its corner line turns by " + format_number(turn) + " deg at " + format_point(b.corner) +
                   " (a corner of its curved side, or a corner blend where rounds meet, as around a pocket's rim: not done yet)", where);
   }
@@ -252,18 +255,25 @@ void recognise_curved(const MeshTopology& mesh, Facets& fx, int f0, const std::v
   for (const auto& [b, a] : bins)
     if (b * fd2 > 4 * fd2 && a >= 0.1 * fullest && b > top_bin) top_bin = b;
   if (top_bin < 0) not_a_round("no second side was found beside it", where);
-  double opening = 0, opening_area = 0;  // the area-weighted mean angle in that bin and its neighbours
+  // The opening is the area-weighted mean angle from kWallSpreadBins below that bin to 1.5 above it, and
+  // side B's facets those within twice their spread about it (fd2 at least) or beyond: a coarse mesh of a
+  // curved wall (1.4 mm facets around a wall corner of R 6) tilts its facets by up to 3 degrees either way.
+  // Caps are left out (strip_facets.h: their normals say little).
+  constexpr double kWallSpreadBins = 5;
+  double opening = 0, opening_area = 0, opening_sq = 0;
   for (const std::vector<int>* list : {&flood, &beside})
     for (int f : *list) {
-      const double a = angle_deg(fx.normal(f), strip.normal[0]);
-      if (std::abs(a - (top_bin + 0.5) * fd2) <= 1.5 * fd2) opening += fx.area(f) * a, opening_area += fx.area(f);
+      const double a = angle_deg(fx.normal(f), strip.normal[0]), off = a - (top_bin + 0.5) * fd2;
+      if (!fx.cap(f) && off >= -kWallSpreadBins * fd2 && off <= 1.5 * fd2)
+        opening += fx.area(f) * a, opening_sq += fx.area(f) * a * a, opening_area += fx.area(f);
     }
   opening /= opening_area;
+  const double spread = std::sqrt(std::max(0.0, opening_sq / opening_area - opening * opening));
   if (opening < 4 * fd2 || opening > 180 - 4 * fd2) not_a_round("its sides do not meet at an angle (no sharp edge to rebuild)", where);
   auto side_of = [&](int g) {
     const double a = angle_deg(fx.normal(g), strip.normal[0]);
     if (a < fd2) return 0;
-    if (a > opening - fd2) return 1;
+    if (a > opening - std::max(fd2, 2 * spread)) return 1;
     return -1;
   };
   if (side_of(f0) >= 0) not_a_round("the seed's facet lies on a side beside a round, not on the round", where);
@@ -305,7 +315,16 @@ void recognise_curved(const MeshTopology& mesh, Facets& fx, int f0, const std::v
   // Side B's tangent plane at each border B vertex: its normal from the side-B facets around it that turn
   // with the one across the border there (not an end face's), weighted by their angles at the vertex.
   std::unordered_map<int, Vec3> anchor;
-  for (const auto& [v, g] : border_b) anchor.emplace(v, fx.normal(g));
+  for (const auto& [v, g] : border_b) {
+    if (anchor.count(v)) continue;
+    // (across a cap, a loop's wall normal is its largest side-B facet's at v: a cap's says little of the
+    // wall; an open strip's end face may be that facet)
+    int wall = g;
+    if (closed && fx.cap(g))
+      for (const int* h = mesh.facets_begin(v); h != mesh.facets_end(v); ++h)
+        if (!strip.facet_set.count(*h) && !fx.cap(*h) && side_of(*h) == 1 && (wall == g || fx.area(*h) > fx.area(wall))) wall = *h;
+    anchor.emplace(v, fx.normal(wall));
+  }
   if (anchor.size() < 2) not_a_round("its curved side's border has fewer than two vertices", where);
   strip.border_count[1] = int(anchor.size());
   std::vector<StripFrame> station;
@@ -313,7 +332,7 @@ void recognise_curved(const MeshTopology& mesh, Facets& fx, int f0, const std::v
   for (const auto& [b, an] : anchor) {
     Vec3 nB = Vec3::Zero();
     for (const int* g = mesh.facets_begin(b); g != mesh.facets_end(b); ++g) {
-      if (strip.facet_set.count(*g) || side_of(*g) != 1 || angle_deg(fx.normal(*g), an) > kStationTurnDeg) continue;
+      if (strip.facet_set.count(*g) || side_of(*g) != 1 || (closed && fx.cap(*g)) || angle_deg(fx.normal(*g), an) > kStationTurnDeg) continue;
       int k = 0;
       while (mesh.F(*g, k) != b) ++k;
       const Vec3 u = mesh.point(mesh.F(*g, (k + 1) % 3)) - mesh.point(b), w = mesh.point(mesh.F(*g, (k + 2) % 3)) - mesh.point(b);
@@ -367,7 +386,7 @@ void recognise_curved(const MeshTopology& mesh, Facets& fx, int f0, const std::v
   const bool walked = closed && order_around(mesh, border_edges, station, station_vertex);
   if (!walked) order_along(station, station_vertex);
   // A loop: its corner line must close up evenly (no station skipped by the ordering) and turn by
-  // kStationTurnDeg at most from each station to the next, the last to the first included.
+  // kLoopTurnDeg at most from each station to the next, the last to the first included.
   if (closed) close_loop(station, where, walked);
   std::vector<int> run_vertex = station_vertex;  // the border B vertex of each station kept
   // The run of stations through the seed's whose corner line turns by kStationTurnDeg at most from one to
