@@ -75,7 +75,7 @@ def add_parsers(commands, point, finite):
     mx.add_argument("--json", metavar="FILE", help="write the limits as JSON")
 
     sw = commands.add_parser("sweep", help="one rounded variant per radius, with a table (CSV, JSON)",
-                             description="Round the picked chains once per radius, in parallel processes; write "
+                             description="Round the picked chains once per radius, on parallel threads; write "
                                          "each variant into OUTDIR and table.csv / table.json with each one's report. "
                                          "Radii above the feasible limit are skipped with a line saying so.")
     sw.add_argument("input", metavar="IN", help="mesh file or solver deck to read")
@@ -88,7 +88,7 @@ def add_parsers(commands, point, finite):
                     help="output mesh format (extension; default stl, for a solver deck its own format)")
     sw.add_argument("--part", metavar="PID", type=int, default=None,
                     help="solver decks: round only this part's shells (as meshround round --part)")
-    sw.add_argument("--jobs", metavar="N", type=int, default=None, help="processes (default: one per core)")
+    sw.add_argument("--jobs", metavar="N", type=int, default=None, help="threads (default: one per core)")
     sw.add_argument("--tolerance", metavar="T", type=finite, default=None, help="chordal tolerance (default r/100)")
 
 

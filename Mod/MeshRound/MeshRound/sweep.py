@@ -6,8 +6,10 @@
     s = MeshRound.sweep_sheet(rounding, sheet, "B", "variants")         # in FreeCAD: radii from a column
     best = MeshRound.optimise_radius(mesh, seeds, objective)             # objective(path) -> float
 
-Variants are made in parallel processes (forked: the mesh's arrays are shared, not pickled; jobs=None
-means one per core); a radius above a chain's largest feasible radius (max_radius) is not tried: the
+Variants are made on parallel threads (the engine lets go of Python's lock while it rounds, so they
+run on as many cores; the mesh's arrays are shared, not copied; jobs=None means one per core). Not
+processes: forking a process that runs threads of its own (FreeCAD's, a test runner's) can leave a worker
+waiting forever on a lock another thread held; a radius above a chain's largest feasible radius (max_radius) is not tried: the
 table says so in one line per such variant (status "above_limit") and the sweep goes on with the rest.
 Every sweep (of a mesh, of a deck, of a Rounding feature from a spreadsheet) writes the same table.
 """
@@ -16,7 +18,6 @@ import csv
 import dataclasses
 import json
 import math
-import multiprocessing
 import os
 import tempfile
 import time
@@ -43,12 +44,12 @@ class SweepResult:
     out_dir: str        # where the files and the tables are
     table_csv: str      # path of the CSV table
     table_json: str     # path of the JSON table
-    jobs: int           # processes used
+    jobs: int           # worker threads used
     seconds: float      # wall-clock time of the whole sweep
     stopped: str        # "" or the line that says which radii were above the feasible limit
 
 
-# The work shared with forked workers (set before the pool starts; fork copies it, nothing is pickled).
+# The work shared with the worker threads (set before the pool starts; read only while it runs).
 _WORK = {}
 
 
@@ -105,7 +106,7 @@ def sweep(mesh, seeds, radii, out_dir=None, fmt=None, jobs=None, tolerance=None,
     own, its includes beside it); part: round_deck's part, for a deck only.
     radii: numbers (every picked chain gets that radius), or lists of one radius per distinct chain in seed
     order (each seed then carries its chain's radius).  fmt: a Mesh write format (WRITE_FORMATS; None: stl),
-    for a deck None or its own extension.  jobs: processes (None: one per core; 1: in this process).
+    for a deck None or its own extension.  jobs: worker threads (None: one per core; 1: in the calling thread).
     thickness, tool, k: check_rules' stamping rule (radius >= k.t), flagged in the table.  check_limits:
     measure max_radius first and skip the variants above it (status "above_limit").  Returns a SweepResult."""
     started = time.perf_counter()
@@ -138,7 +139,7 @@ def sweep(mesh, seeds, radii, out_dir=None, fmt=None, jobs=None, tolerance=None,
     if jobs == 1:
         done = [_variant(t) for t in todo]
     else:
-        with concurrent.futures.ProcessPoolExecutor(max_workers=jobs, mp_context=multiprocessing.get_context("fork")) as pool:
+        with concurrent.futures.ThreadPoolExecutor(max_workers=jobs) as pool:
             done = list(pool.map(_variant, todo))
     for row in done:
         table[row["index"]] = row
@@ -208,7 +209,7 @@ def _jobs(jobs, tasks):
     if isinstance(jobs, bool) or not isinstance(jobs, int) or jobs < 1:
         raise RoundingError(f"jobs must be a positive whole number or None, got {jobs!r}")
     if getattr(FreeCAD, "GuiUp", False):
-        return 1  # no fork under FreeCAD's GUI (its Qt state must not be copied into workers)
+        return 1  # one at a time under FreeCAD's GUI (a call there keeps its window live from the main thread)
     return max(1, min(jobs, tasks))
 
 
