@@ -2,6 +2,8 @@
 
 Run with Debian's interpreter (FreeCAD 0.20's modules are built for it):  /usr/bin/python3 -m pytest tests
 """
+import ctypes
+import gc
 import os
 import sys
 
@@ -92,3 +94,15 @@ def box_feature(doc, box):
     feature.Mesh = box
     doc.recompute()
     return feature
+
+
+@pytest.fixture(scope="module", autouse=True)
+def give_back_memory():
+    """After each test file, the memory its results held goes back to the system (a file's meshes and OCCT
+    solids run to gigabytes; two pytest-xdist workers share the machine's memory)."""
+    yield
+    gc.collect()
+    try:
+        ctypes.CDLL("libc.so.6").malloc_trim(0)
+    except (OSError, AttributeError):  # not glibc
+        pass
