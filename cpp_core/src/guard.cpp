@@ -492,14 +492,16 @@ void check_result(const MeshEdit& edit, const SharpChain& chain, double reach, d
       }
     return nearest;
   };
+  std::unordered_map<int, bool> near_chain;  // per input vertex of a removed facet (each is in several)
+  auto in_reach = [&](int v) {
+    auto it = near_chain.find(v);
+    if (it == near_chain.end()) it = near_chain.emplace(v, from_chains(in.point(v)) <= reach + margin).first;
+    return it->second;
+  };
   double cut_size = 0;
   for (int f : edit.removed) {
-    double size = 0, nearest = INFINITY;
-    for (int k = 0; k < 3; ++k) {
-      size = std::max(size, (in.corner(f, (k + 1) % 3) - in.corner(f, k)).norm());
-      nearest = std::min(nearest, from_chains(in.corner(f, k)));
-    }
-    if (nearest <= reach + margin) cut_size = std::max(cut_size, size);
+    if (!in_reach(in.F(f, 0)) && !in_reach(in.F(f, 1)) && !in_reach(in.F(f, 2))) continue;
+    for (int k = 0; k < 3; ++k) cut_size = std::max(cut_size, (in.corner(f, (k + 1) % 3) - in.corner(f, k)).norm());
   }
   auto within_reach = [&](int v) { return from_chains(edit.point(v)) <= reach + cut_size + margin; };
   for (const Facet& f : edit.added)

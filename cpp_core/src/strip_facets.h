@@ -57,12 +57,15 @@ class Facets {
   // A cap: a facet with an angle of kCapDeg or more, its three corners nearly on one line (a mesher's facet
   // across the seam of two faces): its normal says little of the surface there.
   static constexpr double kCapDeg = 150;
-  bool cap(int f) const {
-    for (int k = 0; k < 3; ++k) {
+  bool cap(int f) {
+    auto it = cap_.find(f);
+    if (it != cap_.end()) return it->second;
+    bool is = false;
+    for (int k = 0; k < 3 && !is; ++k) {
       const Vec3 u = mesh_.corner(f, (k + 1) % 3) - mesh_.corner(f, k), w = mesh_.corner(f, (k + 2) % 3) - mesh_.corner(f, k);
-      if (std::atan2(u.cross(w).norm(), u.dot(w)) >= kCapDeg * M_PI / 180) return true;
+      is = std::atan2(u.cross(w).norm(), u.dot(w)) >= kCapDeg * M_PI / 180;
     }
-    return false;
+    return cap_.emplace(f, is).first->second;
   }
   double area(int f) const { return 0.5 * (mesh_.corner(f, 1) - mesh_.corner(f, 0)).cross(mesh_.corner(f, 2) - mesh_.corner(f, 0)).norm(); }
 
@@ -70,6 +73,7 @@ class Facets {
   const MeshTopology& mesh_;
   const SharpenOptions& o_;
   std::unordered_map<int, Vec3> normal_;
+  std::unordered_map<int, bool> cap_;
 };
 
 // The breadth-first flood of a strip's facets from f0 (each one's vertices Inner until told otherwise):
