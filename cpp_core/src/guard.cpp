@@ -96,8 +96,7 @@ class BoundaryRule {
 
   bool allows(std::uint64_t key) const {
     const Vec3 a = edit_.point(int(key >> 32)), b = edit_.point(int(key & 0xffffffffu));
-    for (const End& e : ends_)
-      if (e.holds(a, reach_, tolerance_ + slack_) && e.holds(b, reach_, tolerance_ + slack_)) return true;
+    if (at_open_end(a, b)) return true;
     for (std::uint64_t old : was_) {
       const Vec3 p = input_point(int(old >> 32)), q = input_point(int(old & 0xffffffffu));
       if (on_segment(a, p, q) && on_segment(b, p, q)) return true;
@@ -125,6 +124,11 @@ class BoundaryRule {
     }
   };
   Vec3 input_point(int v) const { return edit_.input.point(v); }
+  bool at_open_end(const Vec3& a, const Vec3& b) const {
+    for (const End& e : ends_)
+      if (e.holds(a, reach_, tolerance_ + slack_) && e.holds(b, reach_, tolerance_ + slack_)) return true;
+    return false;
+  }
   bool on_segment(const Vec3& x, const Vec3& p, const Vec3& q) const {
     const Vec3 d = q - p;
     const double t = std::clamp((x - p).dot(d) / std::max(d.squaredNorm(), 1e-300), 0.0, 1.0);
@@ -137,18 +141,20 @@ class BoundaryRule {
   std::vector<End> ends_;
 };
 
-// No boundary edge but those the rule allows (above); a hole the band ran into is the input's fault.
+// No boundary edge but those the rule allows (above), no boundary vertex moved off the boundary: a hole or
+// the mesh's edge the band ran into is the input's fault (a hole in a round whose radius is changed). A hole
+// wholly inside what the round replaces goes with it, as in the CAD fillet.
 void check_new_boundary(const MeshEdit& edit, const std::vector<std::uint64_t>& was, const std::vector<std::uint64_t>& is,
                         const BoundaryRule& rule, double reach) {
+  const std::string open = "the mesh is open (a hole in it, or its edge) where the rounding goes, at ";
   for (const auto& [v, to] : edit.moved)
     if (!rule.keeps(v, to))
-      refuse("a vertex of the mesh boundary moved off it", to);
+      report_new_flaw(edit, was, to, reach, "a vertex of the mesh boundary moved off it", open, "fill the hole first");
   std::vector<std::uint64_t> fresh;
   std::set_difference(is.begin(), is.end(), was.begin(), was.end(), std::back_inserter(fresh));
   for (std::uint64_t key : fresh)
     if (!rule.allows(key))
-      report_new_flaw(edit, was, edge_middle(edit, key), reach, "a new boundary edge, a hole in the mesh",
-                      "the mesh is open (a hole in it) where the rounding goes, at ", "fill the hole first");
+      report_new_flaw(edit, was, edge_middle(edit, key), reach, "a new boundary edge, a hole in the mesh", open, "fill the hole first");
 }
 
 // Where the mesh's edge leaves the band and comes back: each pair of unchanged vertices joined by the input's

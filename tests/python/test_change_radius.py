@@ -16,17 +16,19 @@ Bounds:
 """
 import functools
 import math
+import re
 
 import numpy as np
 import pytest
 
 import cases
 import reference
+import soundness
 import FreeCAD
 import MeshPart
 import Part
 import MeshRound
-from MeshRound import cli
+from MeshRound import cli, reround
 
 V = FreeCAD.Vector
 MAX_LENGTH = {"fine": 0.4, "coarse": 0.7}     # / r0
@@ -466,3 +468,28 @@ def test_rims_not_done_yet_are_refused_by_name(name, max_length, why):
         MeshRound.change_radius(mesh, [seed_on_round(case)], 1.5 * case.r_max)
     assert err.value.code == "not_a_round" and why in str(err.value), str(err.value)
     assert mesh.Topology == before
+
+
+@pytest.mark.parametrize("where,refused", [((40.0, 14.6, 29.4), True), ((40.0, 12.5, 30.0), False), ((40.0, 15.0, 26.0), False)],
+                         ids=["in-the-round", "on-top-in-the-new-band", "on-the-wall-beyond"])
+def test_a_hole_near_a_rim_round_is_named_or_kept(where, refused):
+    """One facet taken out of the rim's 0.8 mm mesh, the 2 mm rim made 3 mm. In the old round: the new round's
+    trim meets the hole's edge, refused non_manifold_input naming the hole (it was a result_invalid about a moved
+    boundary vertex), the input untouched. On the top face 1.8 mm from the rim (inside what the 3 mm round
+    replaces, as in the CAD fillet): the hole goes with it, the result watertight. On the wall 4 mm down (beyond
+    the new round): the hole is kept as it was, its three edges the result's only boundary."""
+    V, F = reference.mesh_arrays(rim_mesh("fine"))
+    centroids = V[F].mean(axis=1)
+    i = int(np.argmin(np.linalg.norm(centroids - np.array(where), axis=1)))
+    F = np.delete(F, i, axis=0)
+    seed = seed_on_round(rim_case(RIM_R0))
+    if refused:
+        with pytest.raises(MeshRound.RoundingError) as err:
+            reround.change_radius_arrays(V, F, [tuple(seed)], 3.0)
+        assert err.value.code == "non_manifold_input", str(err.value)
+        at = np.array([float(x) for x in re.search(r"where the rounding goes, at \(([^)]*)\)", str(err.value)).group(1).split(",")])
+        assert np.linalg.norm(at - centroids[i]) < 1.0, (at, centroids[i])
+        return
+    res = reround.change_radius_arrays(V, F, [tuple(seed)], 3.0)
+    assert soundness.problems(V, F, res.vertices, res.triangles) == []
+    assert (reference.edge_table(res.triangles)["count"] == 1).sum() == (0 if where[2] == 30.0 else 3)
