@@ -1,6 +1,7 @@
 """Console-call times of MeshRound.change_radius (find the round, sharpen it, round it again) on meshes of
 OCCT's fillets: a box edge (60 x 40 x 30, r0 = 5, made 8), the S-shaped plate's edge (r0 = 4, made 6) and a
-circular pocket's rim (r0 = 3, made 4.5), each on a MeshPart mesh (elements 0.4 r0), a CAD tessellation
+circular pocket's rim (r0 = 3, made 4.5) and a rectangular pocket's rim rolling around its rounded wall corners
+(R 6; r0 = 2, made 3), each on a MeshPart mesh (elements 0.4 r0), a CAD tessellation
 (deflection 0.004 mm) and, for the box, a mesh of about 100k facets; beside each, round_edges of the same
 edge on a mesh of the sharp solid alike, and the radius-0 call (sharpen only).
 
@@ -35,7 +36,7 @@ def row(label, case, r0, r1, **mesher):
     change = best_of_three(lambda: MeshRound.change_radius(rounded, seed, r1))
     sharpen = best_of_three(lambda: MeshRound.change_radius(rounded, seed, 0))
     fresh = best_of_three(lambda: MeshRound.round_edges(sharp, seed, r1))
-    print(f"{label:34s} {rounded.CountFacets:7d} facets: change_radius {change:6.3f} s (sharpen {sharpen:6.3f} s); "
+    print(f"{label:48s} {rounded.CountFacets:7d} facets: change_radius {change:6.3f} s (sharpen {sharpen:6.3f} s); "
           f"round_edges on the sharp solid's mesh ({sharp.CountFacets} facets) {fresh:6.3f} s", flush=True)
 
 
@@ -49,6 +50,8 @@ def main():
     row("S plate 4 -> 6, CAD", reround.s_case, 4.0, 6.0, **cad)
     row("pocket rim 3 -> 4.5, MeshPart 1.2 mm", reround.loop_case, 3.0, 4.5, MaxLength=1.2)
     row("pocket rim 3 -> 4.5, CAD", reround.loop_case, 3.0, 4.5, **cad)
+    row("rim around wall corners 2 -> 3, MeshPart 0.8 mm", reround.rim_case, 2.0, 3.0, MaxLength=0.8)
+    row("rim around wall corners 2 -> 3, CAD", reround.rim_case, 2.0, 3.0, **cad)
 
 
 if __name__ == "__main__":
