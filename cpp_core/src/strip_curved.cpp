@@ -210,10 +210,31 @@ bool order_around(const MeshTopology& mesh, const std::vector<std::pair<int, int
   return true;
 }
 
-void recognise_curved(const MeshTopology& mesh, Facets& fx, int f0, const std::vector<int>& flood, const std::vector<int>& beside,
-                      const SharpenOptions& o, const Vec3& where, RoundStrip& strip, std::vector<std::pair<int, int>>& end_edges) {
-  const double fd2 = 2 * o.flat_deg;
-  // Side A: the largest group of coplanar candidates.
+// What recognise_curved learns of a strip, pass by pass (each pass below fills its part; the strip itself,
+// RoundStrip, gets plane A, its roles, borders and, last, its stations and frames).
+struct CurvedPasses {
+  double fd2 = 0;      // twice the flat angle: facets within it of a plane's normal lie on the plane (deg)
+  double opening = 0;  // side B's angle to plane A, area-weighted over side B's facets (deg)
+  double spread = 0;   // their spread about it (deg)
+  std::vector<std::pair<int, int>> border_b;      // (border B vertex, the side-B facet across the border there)
+  std::vector<std::pair<int, int>> border_edges;  // (strip facet, edge) of each border B edge
+  bool closed = false;                            // a round all around a loop (a circular pocket's or boss's rim)
+  std::vector<StripFrame> station;                // one per border B vertex, in order along the corner line
+  std::vector<int> station_vertex;                // the border B vertex of each
+  bool walked = false;                            // a loop's stations ordered along its border (order_around)
+
+  // A facet's side by its angle to plane A: 0 on side A, 1 on side B, -1 neither (the round, an end face).
+  int side_of(Facets& fx, const RoundStrip& strip, int g) const {
+    const double a = angle_deg(fx.normal(g), strip.normal[0]);
+    if (a < fd2) return 0;
+    if (a > opening - std::max(fd2, 2 * spread)) return 1;
+    return -1;
+  }
+};
+
+// Plane A (strip.normal[0], offset[0]): the largest group of coplanar facets beside the flood, its plane
+// fitted to the group's vertices.
+void fit_side_a(const MeshTopology& mesh, Facets& fx, const std::vector<int>& beside, double fd2, const Vec3& where, RoundStrip& strip) {
   std::vector<std::pair<Vec3, double>> groups;  // (normal, area)
   for (int f : beside) {
     bool known = false;
@@ -243,8 +264,14 @@ void recognise_curved(const MeshTopology& mesh, Facets& fx, int f0, const std::v
     strip.offset[0] = strip.normal[0].dot(c);  // (through the plane's own vertices, not the border's: a
                                                // sliver at an end may put a round's vertex on the border)
   }
-  // The opening: the largest angle to side A that a tenth of the area of the fullest angle has, in bins
-  // of 2 flat_deg (side B's facets: one angle all along; the round's spread over the angles between).
+}
+
+// The opening (pass.opening, pass.spread): the largest angle to side A that a tenth of the area of the
+// fullest angle has, in bins of 2 flat_deg (side B's facets: one angle all along; the round's spread over the
+// angles between).
+void measure_opening(Facets& fx, const std::vector<int>& flood, const std::vector<int>& beside, const RoundStrip& strip,
+                     const Vec3& where, CurvedPasses& pass) {
+  const double fd2 = pass.fd2;
   std::unordered_map<int, double> bins;
   for (const std::vector<int>* list : {&flood, &beside})
     for (int f : *list) bins[int(std::floor(angle_deg(fx.normal(f), strip.normal[0]) / fd2))] += fx.area(f);
@@ -270,16 +297,16 @@ void recognise_curved(const MeshTopology& mesh, Facets& fx, int f0, const std::v
   opening /= opening_area;
   const double spread = std::sqrt(std::max(0.0, opening_sq / opening_area - opening * opening));
   if (opening < 4 * fd2 || opening > 180 - 4 * fd2) not_a_round("its sides do not meet at an angle (no sharp edge to rebuild)", where);
-  auto side_of = [&](int g) {
-    const double a = angle_deg(fx.normal(g), strip.normal[0]);
-    if (a < fd2) return 0;
-    if (a > opening - std::max(fd2, 2 * spread)) return 1;
-    return -1;
-  };
-  if (side_of(f0) >= 0) not_a_round("the seed's facet lies on a side beside a round, not on the round", where);
-  // The strip, its borders and ends (as flood_strip, the sides told by their angle to side A).
-  std::vector<std::pair<int, int>> border_b;  // (border B vertex, the side-B facet across the border there)
-  std::vector<std::pair<int, int>> border_edges;  // (strip facet, edge) of each border B edge
+  pass.opening = opening, pass.spread = spread;
+}
+
+// The strip's flood (as flood_strip, the sides told by their angle to side A): its facets and roles, border B's
+// vertices and edges (pass.border_b, border_edges), the end edges, and plane A's border count.
+void flood_curved(const MeshTopology& mesh, Facets& fx, int f0, const SharpenOptions& o, const Vec3& where, RoundStrip& strip,
+                  std::vector<std::pair<int, int>>& end_edges, CurvedPasses& pass) {
+  auto side_of = [&](int g) { return pass.side_of(fx, strip, g); };
+  auto& border_b = pass.border_b;
+  auto& border_edges = pass.border_edges;
   flood_from(mesh, fx, f0, o, strip, [&](int f, int k, int g) {
     const int a = mesh.F(f, k), b = mesh.F(f, (k + 1) % 3);
     const int side = g >= 0 ? side_of(g) : -1;
@@ -305,15 +332,63 @@ void recognise_curved(const MeshTopology& mesh, Facets& fx, int f0, const std::v
     }
     return false;
   });
-  const bool closed = end_edges.empty();  // a round all around a loop (a circular pocket's or boss's rim)
+  pass.closed = end_edges.empty();
   // Plane A's border.
   int n = 0;
   for (const auto& [v, role] : strip.role)
     if (role == StripRole::BorderA) ++n;
   if (n < 2) not_a_round("its flat side's border has fewer than two vertices", where);
   strip.border_count[0] = n;
-  // Side B's tangent plane at each border B vertex: its normal from the side-B facets around it that turn
-  // with the one across the border there (not an end face's), weighted by their angles at the vertex.
+}
+
+// Side B's tangent plane at border B vertex b, its normal `nB` from the facets around b made sharper (the
+// facets of a tessellated curved wall tilt by their chords): side B's line in b's own section, through b and
+// the side-B vertices within three rings of it that lie nearly in that section (|along| < 0.35 of the ring's
+// mean edge), projected into it; nB is normal to it and to the axis.
+Vec3 wall_normal_in_section(const MeshTopology& mesh, Facets& fx, const RoundStrip& strip, const CurvedPasses& pass, int b, Vec3 nB) {
+  auto side_of = [&](int g) { return pass.side_of(fx, strip, g); };
+  const Vec3 t = strip.normal[0].cross(nB).normalized();
+  std::unordered_set<int> ring{b};
+  for (int step = 0; step < 3; ++step) {
+    std::vector<int> grow(ring.begin(), ring.end());
+    for (int v : grow)
+      for (const int* g = mesh.facets_begin(v); g != mesh.facets_end(v); ++g)
+        if (!strip.facet_set.count(*g) && side_of(*g) == 1 && angle_deg(fx.normal(*g), nB) <= kStationTurnDeg)
+          for (int k = 0; k < 3; ++k) ring.insert(mesh.F(*g, k));
+  }
+  double h = 0;
+  int nh = 0;
+  for (const int* g = mesh.facets_begin(b); g != mesh.facets_end(b); ++g)
+    for (int k = 0; k < 3; ++k) h += (mesh.corner(*g, k) - mesh.corner(*g, (k + 1) % 3)).norm(), ++nh;
+  h /= std::max(nh, 1);
+  Eigen::Matrix3d C = Eigen::Matrix3d::Zero();
+  int used = 0;
+  for (int v : ring) {
+    const Vec3 d = mesh.point(v) - mesh.point(b);
+    if (v == b || std::abs(t.dot(d)) > 0.35 * h || d.norm() < 0.2 * h) continue;
+    const Vec3 q = d - t * t.dot(d);
+    C += q * q.transpose() / q.squaredNorm(), ++used;
+  }
+  if (used >= 1) {
+    Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(C);
+    const Vec3 down = eig.eigenvectors().col(2).normalized();
+    Vec3 fit = down.cross(t).normalized();
+    if (fit.dot(nB) < 0) fit = -fit;
+    if (angle_deg(fit, nB) < 5) nB = fit;
+  }
+  return nB;
+}
+
+// A station per border B vertex (pass.station, station_vertex): plane A and side B's tangent plane there, their
+// corner line's direction (the axis) and corner point in the vertex's section. Side B's normal at a vertex is
+// the side-B facets' around it that turn with the one across the border there (not an end face's), weighted
+// by their angles at the vertex.
+void make_stations(const MeshTopology& mesh, Facets& fx, const Vec3& where, RoundStrip& strip, CurvedPasses& pass) {
+  auto side_of = [&](int g) { return pass.side_of(fx, strip, g); };
+  const bool closed = pass.closed;
+  auto& station = pass.station;
+  auto& station_vertex = pass.station_vertex;
+  const auto& border_b = pass.border_b;
   std::unordered_map<int, Vec3> anchor;
   for (const auto& [v, g] : border_b) {
     if (anchor.count(v)) continue;
@@ -327,8 +402,6 @@ void recognise_curved(const MeshTopology& mesh, Facets& fx, int f0, const std::v
   }
   if (anchor.size() < 2) not_a_round("its curved side's border has fewer than two vertices", where);
   strip.border_count[1] = int(anchor.size());
-  std::vector<StripFrame> station;
-  std::vector<int> station_vertex;  // the border B vertex of each
   for (const auto& [b, an] : anchor) {
     Vec3 nB = Vec3::Zero();
     for (const int* g = mesh.facets_begin(b); g != mesh.facets_end(b); ++g) {
@@ -340,40 +413,7 @@ void recognise_curved(const MeshTopology& mesh, Facets& fx, int f0, const std::v
     }
     if (nB.norm() < 1e-12) continue;
     nB.normalize();
-    // Sharper (the facets of a tessellated curved wall tilt by their chords): side B's line in b's own
-    // section, through b and the side-B vertices within three rings of it that lie nearly in that section
-    // (|along| < 0.35 of the ring's mean edge), projected into it; nB is normal to it and to the axis.
-    {
-      const Vec3 t = strip.normal[0].cross(nB).normalized();
-      std::unordered_set<int> ring{b};
-      for (int pass = 0; pass < 3; ++pass) {
-        std::vector<int> grow(ring.begin(), ring.end());
-        for (int v : grow)
-          for (const int* g = mesh.facets_begin(v); g != mesh.facets_end(v); ++g)
-            if (!strip.facet_set.count(*g) && side_of(*g) == 1 && angle_deg(fx.normal(*g), nB) <= kStationTurnDeg)
-              for (int k = 0; k < 3; ++k) ring.insert(mesh.F(*g, k));
-      }
-      double h = 0;
-      int nh = 0;
-      for (const int* g = mesh.facets_begin(b); g != mesh.facets_end(b); ++g)
-        for (int k = 0; k < 3; ++k) h += (mesh.corner(*g, k) - mesh.corner(*g, (k + 1) % 3)).norm(), ++nh;
-      h /= std::max(nh, 1);
-      Eigen::Matrix3d C = Eigen::Matrix3d::Zero();
-      int used = 0;
-      for (int v : ring) {
-        const Vec3 d = mesh.point(v) - mesh.point(b);
-        if (v == b || std::abs(t.dot(d)) > 0.35 * h || d.norm() < 0.2 * h) continue;
-        const Vec3 q = d - t * t.dot(d);
-        C += q * q.transpose() / q.squaredNorm(), ++used;
-      }
-      if (used >= 1) {
-        Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(C);
-        const Vec3 down = eig.eigenvectors().col(2).normalized();
-        Vec3 fit = down.cross(t).normalized();
-        if (fit.dot(nB) < 0) fit = -fit;
-        if (angle_deg(fit, nB) < 5) nB = fit;
-      }
-    }
+    nB = wall_normal_in_section(mesh, fx, strip, pass, b, nB);
     StripFrame F;
     F.normal[0] = strip.normal[0], F.offset[0] = strip.offset[0];
     F.normal[1] = nB, F.offset[1] = F.normal[1].dot(mesh.point(b));
@@ -383,53 +423,69 @@ void recognise_curved(const MeshTopology& mesh, Facets& fx, int f0, const std::v
     F.corner = frame_solve(F.normal[0], F.normal[1], F.axis, Vec3(F.offset[0], F.offset[1], F.axis.dot(mesh.point(b))));
     station.push_back(F), station_vertex.push_back(b);
   }
-  const bool walked = closed && order_around(mesh, border_edges, station, station_vertex);
+}
+
+// An open strip's run of stations through the seed's whose corner line turns by kStationTurnDeg at most from
+// one to the next (pass.station, `run_vertex`: their border B vertices); stations beyond it at an end (an end
+// face's facets across a sliver) are dropped, their border edges made end edges.
+void keep_seed_run(const MeshTopology& mesh, const Vec3& where, RoundStrip& strip, std::vector<std::pair<int, int>>& end_edges,
+                   CurvedPasses& pass, std::vector<int>& run_vertex) {
+  auto& station = pass.station;
+  const auto& station_vertex = pass.station_vertex;
+  const auto& border_edges = pass.border_edges;
+  std::vector<double> turn(station.size(), 0);
+  for (size_t i = 1; i < station.size(); ++i)
+    turn[i] = std::acos(std::min(1.0, std::abs(station[i].axis.dot(station[i - 1].axis)))) / kDeg;
+  size_t seed_at = 0;
+  for (size_t i = 1; i < station.size(); ++i)
+    if ((station[i].corner - where).squaredNorm() < (station[seed_at].corner - where).squaredNorm()) seed_at = i;
+  size_t lo = seed_at, hi = seed_at;
+  while (lo > 0 && turn[lo] <= kStationTurnDeg) --lo;
+  while (hi + 1 < station.size() && turn[hi + 1] <= kStationTurnDeg) ++hi;
+  // Dropped at an end: stations within twice the round's width (corner to border) of the run's last
+  // one, the end face's (a mesher's slivers there); beyond, the corner line goes on around a corner.
+  auto beyond = [&](size_t from, size_t to, size_t end) {
+    const double width = (station[end].corner - mesh.point(station_vertex[end])).norm();
+    for (size_t j = from; j < to; ++j)
+      if ((station[j].corner - station[end].corner).norm() > 2 * width) return true;
+    return false;
+  };
+  const bool past_lo = beyond(0, lo, lo), past_hi = beyond(hi + 1, station.size(), hi);
+  if (past_lo || past_hi) {
+    const size_t at = past_lo ? lo : hi + 1;
+    not_a_round("its corner line turns by " + format_number(turn[at]) + " deg at " + format_point(station[at].corner) +
+                " (a corner of its curved side, or a corner blend where rounds meet, as around a pocket's rim: not done yet)", where);
+  }
+  station = std::vector<StripFrame>(station.begin() + long(lo), station.begin() + long(hi) + 1);
+  run_vertex.assign(station_vertex.begin() + long(lo), station_vertex.begin() + long(hi) + 1);
+  // The border edges at a dropped station are the strip's end there (across them: an end face's
+  // facets, reached through a mesher's sliver); their vertices are the strip's.
+  const std::unordered_set<int> kept(station_vertex.begin() + long(lo), station_vertex.begin() + long(hi) + 1);
+  for (const auto& [f, k] : border_edges) {
+    const int a = mesh.F(f, k), b = mesh.F(f, (k + 1) % 3);
+    if (kept.count(a) && kept.count(b)) continue;
+    end_edges.push_back({f, k});
+    for (int v : {a, b})
+      if (!kept.count(v)) strip.role[v] = StripRole::Inner;
+  }
+  strip.border_count[1] = int(kept.size());
+  if (station.size() < 2) not_a_round("its curved side's border has fewer than two stations", where);
+}
+
+// The stations in order along the corner line; a loop's closing up evenly; an open strip's run through the
+// seed's station (keep_seed_run); the tilts smoothed; the axes all one way along the line.
+void order_stations(const MeshTopology& mesh, const Vec3& where, RoundStrip& strip, std::vector<std::pair<int, int>>& end_edges,
+                    CurvedPasses& pass) {
+  const bool closed = pass.closed;
+  auto& station = pass.station;
+  auto& station_vertex = pass.station_vertex;
+  const bool walked = pass.walked = closed && order_around(mesh, pass.border_edges, station, station_vertex);
   if (!walked) order_along(station, station_vertex);
   // A loop: its corner line must close up evenly (no station skipped by the ordering) and turn by
   // kLoopTurnDeg at most from each station to the next, the last to the first included.
   if (closed) close_loop(station, where, walked);
   std::vector<int> run_vertex = station_vertex;  // the border B vertex of each station kept
-  // The run of stations through the seed's whose corner line turns by kStationTurnDeg at most from one to
-  // the next; stations beyond it at an end (an end face's facets across a sliver) are dropped.
-  if (!closed) {
-    std::vector<double> turn(station.size(), 0);
-    for (size_t i = 1; i < station.size(); ++i)
-      turn[i] = std::acos(std::min(1.0, std::abs(station[i].axis.dot(station[i - 1].axis)))) / kDeg;
-    size_t seed_at = 0;
-    for (size_t i = 1; i < station.size(); ++i)
-      if ((station[i].corner - where).squaredNorm() < (station[seed_at].corner - where).squaredNorm()) seed_at = i;
-    size_t lo = seed_at, hi = seed_at;
-    while (lo > 0 && turn[lo] <= kStationTurnDeg) --lo;
-    while (hi + 1 < station.size() && turn[hi + 1] <= kStationTurnDeg) ++hi;
-    // Dropped at an end: stations within twice the round's width (corner to border) of the run's last
-    // one, the end face's (a mesher's slivers there); beyond, the corner line goes on around a corner.
-    auto beyond = [&](size_t from, size_t to, size_t end) {
-      const double width = (station[end].corner - mesh.point(station_vertex[end])).norm();
-      for (size_t j = from; j < to; ++j)
-        if ((station[j].corner - station[end].corner).norm() > 2 * width) return true;
-      return false;
-    };
-    const bool past_lo = beyond(0, lo, lo), past_hi = beyond(hi + 1, station.size(), hi);
-    if (past_lo || past_hi) {
-      const size_t at = past_lo ? lo : hi + 1;
-      not_a_round("its corner line turns by " + format_number(turn[at]) + " deg at " + format_point(station[at].corner) +
-                  " (a corner of its curved side, or a corner blend where rounds meet, as around a pocket's rim: not done yet)", where);
-    }
-    station = std::vector<StripFrame>(station.begin() + long(lo), station.begin() + long(hi) + 1);
-    run_vertex.assign(station_vertex.begin() + long(lo), station_vertex.begin() + long(hi) + 1);
-    // The border edges at a dropped station are the strip's end there (across them: an end face's
-    // facets, reached through a mesher's sliver); their vertices are the strip's.
-    const std::unordered_set<int> kept(station_vertex.begin() + long(lo), station_vertex.begin() + long(hi) + 1);
-    for (const auto& [f, k] : border_edges) {
-      const int a = mesh.F(f, k), b = mesh.F(f, (k + 1) % 3);
-      if (kept.count(a) && kept.count(b)) continue;
-      end_edges.push_back({f, k});
-      for (int v : {a, b})
-        if (!kept.count(v)) strip.role[v] = StripRole::Inner;
-    }
-    strip.border_count[1] = int(kept.size());
-    if (station.size() < 2) not_a_round("its curved side's border has fewer than two stations", where);
-  }
+  if (!closed) keep_seed_run(mesh, where, strip, end_edges, pass, run_vertex);
   {
     std::vector<Vec3> border;
     for (const int v : run_vertex) border.push_back(mesh.point(v));
@@ -442,8 +498,12 @@ void recognise_curved(const MeshTopology& mesh, Facets& fx, int f0, const std::v
     const Vec3 along = i > 0 ? station[i - 1].axis : Vec3(station[std::min<size_t>(1, station.size() - 1)].corner - F.corner);
     if (F.axis.dot(along) < 0) F.axis = -F.axis;
   }
-  // The strip vertices' stations (nearest corner point), the side of each plane the round lies on.
-  std::unordered_map<int, size_t> at;
+}
+
+// The side of each plane the round lies on (strip.side), from the strip's inner and end vertices; `at`: each
+// strip vertex's station (the nearest corner point).
+void find_sides(const MeshTopology& mesh, const std::vector<StripFrame>& station, const Vec3& where, RoundStrip& strip,
+                std::unordered_map<int, size_t>& at) {
   for (const auto& [v, role] : strip.role) {
     size_t best = 0;
     for (size_t i = 1; i < station.size(); ++i)
@@ -459,6 +519,12 @@ void recognise_curved(const MeshTopology& mesh, Facets& fx, int f0, const std::v
     if (std::abs(total) <= slack) not_a_round("it has no vertex off its sides (one element across: the radius is not defined)", where);
     strip.side[side] = total > 0 ? 1.0 : -1.0;
   }
+}
+
+// The strip's corner line from the stations, each vertex's frame (its nearest station's, moved into its own
+// section), the strip's own frame, its ends' and its parameter range.
+void frame_vertices(const MeshTopology& mesh, std::vector<StripFrame> station, const std::unordered_map<int, size_t>& at,
+                    bool closed, const Vec3& where, RoundStrip& strip) {
   double s = 0;
   for (size_t i = 0; i < station.size(); ++i) {
     StripFrame& F = station[i];
@@ -474,8 +540,8 @@ void recognise_curved(const MeshTopology& mesh, Facets& fx, int f0, const std::v
   const CornerCurve curve(station, closed);
   for (const auto& [v, role] : strip.role) {
     const Vec3 p = mesh.point(v);
-    StripFrame F = station[at[v]];
-    double u = curve.S(long(at[v])) + F.axis.dot(p - F.corner);
+    StripFrame F = station[at.at(v)];
+    double u = curve.S(long(at.at(v))) + F.axis.dot(p - F.corner);
     Vec3 d, c;
     for (int step = 0; step < 3; ++step) {  // the curve's point whose normal plane holds p
       c = curve.at(u, &d);
@@ -503,6 +569,21 @@ void recognise_curved(const MeshTopology& mesh, Facets& fx, int f0, const std::v
   strip.s_lo = INFINITY, strip.s_hi = -INFINITY;
   for (const auto& [v, role] : strip.role) strip.s_lo = std::min(strip.s_lo, strip.param(mesh.point(v))), strip.s_hi = std::max(strip.s_hi, strip.param(mesh.point(v)));
   if (closed) strip.s_lo = 0, strip.s_hi = strip.loop_length;
+}
+
+void recognise_curved(const MeshTopology& mesh, Facets& fx, int f0, const std::vector<int>& flood, const std::vector<int>& beside,
+                      const SharpenOptions& o, const Vec3& where, RoundStrip& strip, std::vector<std::pair<int, int>>& end_edges) {
+  CurvedPasses pass;
+  pass.fd2 = 2 * o.flat_deg;
+  fit_side_a(mesh, fx, beside, pass.fd2, where, strip);
+  measure_opening(fx, flood, beside, strip, where, pass);
+  if (pass.side_of(fx, strip, f0) >= 0) not_a_round("the seed's facet lies on a side beside a round, not on the round", where);
+  flood_curved(mesh, fx, f0, o, where, strip, end_edges, pass);
+  make_stations(mesh, fx, where, strip, pass);
+  order_stations(mesh, where, strip, end_edges, pass);
+  std::unordered_map<int, size_t> at;
+  find_sides(mesh, pass.station, where, strip, at);
+  frame_vertices(mesh, std::move(pass.station), at, pass.closed, where, strip);
 }
 
 }  // namespace meshround::strip_detail
