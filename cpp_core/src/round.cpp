@@ -201,6 +201,60 @@ void probe_reach_for_room(const MeshTopology& mesh, const ChainSeed& seed, const
     if (gives_room(wider)) return;
 }
 
+// The rounds made before in this call (net.earlier_round_points): their vertices on `mesh`, which the base
+// meshes stop at and a shared corner's end column takes.
+void find_earlier_round_vertices(const MeshTopology& mesh, const NetworkPart& net, std::unordered_set<int>& earlier,
+                                 std::vector<std::pair<Vec3, int>>& earlier_points) {
+  if (net.earlier_round_points.empty()) return;
+  std::set<std::array<double, 3>> wanted;
+  for (const Vec3& p : net.earlier_round_points) wanted.insert({p.x(), p.y(), p.z()});
+  for (int v = 0; v < mesh.num_vertices(); ++v) {
+    const Vec3 p = mesh.point(v);
+    if (wanted.count({p.x(), p.y(), p.z()})) earlier.insert(v), earlier_points.push_back({p, v});
+  }
+}
+
+// A chain's report from its passes' figures, and its spine, contacts and chain points.
+void fill_chain_report(const SharpChain& chain, const std::vector<ProfileStation>& stations, const TrimLines& trim, const MeshEdit& edit,
+                       const RoundMeshStats& mesh_stats, const SewStats& sew, const ImproveStats& improved, RoundedChain& out) {
+  ChainReport& rep = out.report;
+  rep.closed = chain.closed;
+  rep.length = chain.length;
+  rep.stations = int(stations.size());
+  rep.facets_removed = int(edit.removed.size());
+  rep.facets_cut = trim.facets_cut;
+  rep.facets_added = int(edit.added.size());
+  rep.vertices_snapped = trim.vertices_snapped;
+  rep.mesh_deviation = mesh_stats.max_deviation;
+  rep.profile_rows = mesh_stats.rows;
+  rep.gap_facets = sew.gap_facets;
+  rep.open_gaps = sew.open_gaps;
+  rep.edges_flipped = improved.flips;
+  rep.vertices_removed = improved.vertices_removed;
+  rep.vertices_slid = improved.vertices_slid;
+  for (const ProfileStation& st : stations) {
+    out.spine.push_back(st.centre);
+    for (int k = 0; k < 2; ++k) {
+      out.contacts[k].push_back(st.contact[k]);
+      rep.contacts_on_edges += st.region[k] == ContactRegion::Edge;
+      rep.contacts_on_vertices += st.region[k] == ContactRegion::Vertex;
+    }
+  }
+  out.chain = chain.points;
+}
+
+// A chain's figures added to the call's report.
+void add_to_call_report(const ChainReport& rep, double min_new, double min_input, RoundReport& report) {
+  report.facets_removed += rep.facets_removed;
+  report.facets_added += rep.facets_added;
+  report.max_deviation = std::max(report.max_deviation, rep.mesh_deviation);
+  report.min_new_angle_deg = std::min(report.min_new_angle_deg, min_new);
+  report.min_input_angle_deg = std::min(report.min_input_angle_deg, min_input);
+  report.thin_facets += rep.thin_facets;
+  if (rep.reach_for_room > 0) report.thin_facets_short_of_room += rep.thin_facets;
+  report.reach_for_room = std::max(report.reach_for_room, rep.reach_for_room);
+}
+
 // `split`: the mesh is the input already split along the chain's end segments (ends.h). `net`: its corners
 // with other chains of the call; `round_points` (if given) gets the round's vertices. `delta`: the result,
 // as an edit of `mesh` (none for a probe).
@@ -213,18 +267,9 @@ RoundedChain round_one_chain(const MeshTopology& mesh, const ChainSeed& seed, co
   chain.index_segments();
   const RadiusLaw law(opt, chain, opt.reach * r_max);
   const double reach = opt.reach * law.max_radius();
-  // The rounds made before in this call: their vertices, which the base meshes stop at and a shared
-  // corner's end column takes.
   std::unordered_set<int> earlier;
   std::vector<std::pair<Vec3, int>> earlier_points;
-  if (!net.earlier_round_points.empty()) {
-    std::set<std::array<double, 3>> wanted;
-    for (const Vec3& p : net.earlier_round_points) wanted.insert({p.x(), p.y(), p.z()});
-    for (int v = 0; v < mesh.num_vertices(); ++v) {
-      const Vec3 p = mesh.point(v);
-      if (wanted.count({p.x(), p.y(), p.z()})) earlier.insert(v), earlier_points.push_back({p, v});
-    }
-  }
+  find_earlier_round_vertices(mesh, net, earlier, earlier_points);
   const BaseMeshes base = collect_base_meshes(mesh, chain, reach, opt.feature_angle_deg, earlier.empty() ? nullptr : &earlier);
   check_base_meshes(mesh, base);
   timer.done("chain");
@@ -314,29 +359,7 @@ RoundedChain round_one_chain(const MeshTopology& mesh, const ChainSeed& seed, co
   timer.done("write");
 
   ChainReport& rep = out.report;
-  rep.closed = chain.closed;
-  rep.length = chain.length;
-  rep.stations = int(stations.size());
-  rep.facets_removed = int(edit.removed.size());
-  rep.facets_cut = trim.facets_cut;
-  rep.facets_added = int(edit.added.size());
-  rep.vertices_snapped = trim.vertices_snapped;
-  rep.mesh_deviation = mesh_stats.max_deviation;
-  rep.profile_rows = mesh_stats.rows;
-  rep.gap_facets = sew.gap_facets;
-  rep.open_gaps = sew.open_gaps;
-  rep.edges_flipped = improved.flips;
-  rep.vertices_removed = improved.vertices_removed;
-  rep.vertices_slid = improved.vertices_slid;
-  for (const ProfileStation& st : stations) {
-    out.spine.push_back(st.centre);
-    for (int k = 0; k < 2; ++k) {
-      out.contacts[k].push_back(st.contact[k]);
-      rep.contacts_on_edges += st.region[k] == ContactRegion::Edge;
-      rep.contacts_on_vertices += st.region[k] == ContactRegion::Vertex;
-    }
-  }
-  out.chain = chain.points;
+  fill_chain_report(chain, stations, trim, edit, mesh_stats, sew, improved, out);
   if (!is_probe) out.brep = face_to_brep(surface.face);
 
   double min_new = 180, min_input = 180;
@@ -346,15 +369,7 @@ RoundedChain round_one_chain(const MeshTopology& mesh, const ChainSeed& seed, co
     probe_reach_for_room(mesh, seed, opt, net, split, rep);
     timer.done("room");
   }
-
-  report.facets_removed += rep.facets_removed;
-  report.facets_added += rep.facets_added;
-  report.max_deviation = std::max(report.max_deviation, rep.mesh_deviation);
-  report.min_new_angle_deg = std::min(report.min_new_angle_deg, min_new);
-  report.min_input_angle_deg = std::min(report.min_input_angle_deg, min_input);
-  report.thin_facets += rep.thin_facets;
-  if (rep.reach_for_room > 0) report.thin_facets_short_of_room += rep.thin_facets;
-  report.reach_for_room = std::max(report.reach_for_room, rep.reach_for_room);
+  add_to_call_report(rep, min_new, min_input, report);
   return out;
 }
 
