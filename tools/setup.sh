@@ -14,6 +14,7 @@ PACKAGES=(
   pybind11-dev libeigen3-dev
   libgtest-dev libbenchmark-dev
   python3-pytest python3-pytest-xdist python3-numpy python3-scipy   # xdist: the suite's files on two cores
+  gmsh                                          # tests: meshes of the CAD solids from another mesher
   xvfb xauth                                    # the GUI tests run FreeCAD under Xvfb
   clang-14 libfuzzer-14-dev libclang-rt-14-dev  # tools/fuzz.sh: libFuzzer with ASan + UBSan
 )

@@ -112,8 +112,9 @@ constexpr double kSnapShare = 0.25;  // x its shortest edge: a vertex that near 
 constexpr double kSlideOffPlane = 1e-4;   // x the chain edge's length: how far a vertex slid along the chain may leave
                                           // its facets' planes
 constexpr double kSlideKeepsAngle = 0.5;  // x min(kSnapKeepsAngle, its own): the smallest angle a slid vertex's facets keep
-constexpr double kSideShare = 0.01;  // x a side's length: a corner that near a flat side (not near its ends) splits
-                                     // that side (the sliver it would leave has an angle under about 1 degree)
+constexpr double kSideShare = 0.01;  // x a side's length: how near its ends a corner is that end vertex's
+constexpr double kSideSplitShare = 0.15;  // x a side's length: a corner that near a flat side (not near its ends)
+                                          // may split that side (insert_corner)
 
 // The corner as a vertex: the nearest vertex when it is one, or when it is a vertex of a flat neighbourhood
 // within kSnapShare of its shortest edge from it (moved there); else the facet or edge split at it.
@@ -147,26 +148,44 @@ int insert_corner(SplitMesh& m, const MeshTopology& mesh, std::vector<int>& face
   const auto f = m.tris[best];
   for (int k = 0; k < 3; ++k)
     if ((m.points[f[k]] - q).norm() <= slack) return f[k];
-  // Within a hair of a side, or within kSideShare of its length where the facets on both sides lie in one
-  // plane: the side is split at the corner (no sliver between the corner and the side).
-  auto flat_across = [&](int a, int b) {
-    Vec3 n[2];
-    int count = 0;
-    for (size_t t = 0; t < m.tris.size() && count < 2; ++t) {
+  // Within a hair of a side the corner is split into that side. Else of the facet split at the corner (three
+  // pieces) and the splits of a side within kSideSplitShare of its length whose facet across lies in one
+  // plane with this one (two pieces in each), the one whose pieces' smallest angle is largest: a corner a
+  // hair inside a facet beside a side leaves a sliver between itself and the side (a gmsh mesh of a drafted
+  // pocket had its floor's corner 0.017 mm from a 1.08 mm side; that sliver straddled the end plane and
+  // folded once trimmed), while near a vertex the side's pieces are the worse.
+  auto across = [&](int a, int b, int c) {  // the third corner of the other facet on side a-b, if coplanar
+    const Vec3 n = (m.points[b] - m.points[a]).cross(m.points[c] - m.points[a]).normalized();
+    for (size_t t = 0; t < m.tris.size(); ++t) {
       if (m.gone[t]) continue;
       const auto& g = m.tris[t];
       for (int j = 0; j < 3; ++j)
-        if ((g[j] == a && g[(j + 1) % 3] == b) || (g[j] == b && g[(j + 1) % 3] == a))
-          n[count++] = (m.points[g[1]] - m.points[g[0]]).cross(m.points[g[2]] - m.points[g[0]]).normalized();
+        if (g[j] == b && g[(j + 1) % 3] == a) {
+          const Vec3 ng = (m.points[g[1]] - m.points[g[0]]).cross(m.points[g[2]] - m.points[g[0]]).normalized();
+          return ng.dot(n) > 1 - 1e-6 ? g[(j + 2) % 3] : -1;
+        }
     }
-    return count == 2 && n[0].dot(n[1]) > 1 - 1e-6;
+    return -1;
   };
-  for (int k = 0; k < 3 && (region < 1 || region > 3); ++k) {
-    const Vec3 &a = m.points[f[k]], &b = m.points[f[(k + 1) % 3]];
-    double t;
-    const double off = (closest_point_on_segment(q, a, b, &t) - q).norm();
-    const bool beside = t > kSideShare && t < 1 - kSideShare;  // (near an end the corner is that vertex's)
-    if (off <= slack || (beside && off <= kSideShare * (b - a).norm() && flat_across(f[k], f[(k + 1) % 3]))) region = k + 1;
+  if (region == 0 || region > 3) {  // (inside the facet, or nearest one of its corners)
+    const Vec3 &A = m.points[f[0]], &B = m.points[f[1]], &C = m.points[f[2]];
+    double best_angle = std::min({smallest_angle(A, B, q), smallest_angle(B, C, q), smallest_angle(C, A, q)});
+    for (int k = 0; k < 3; ++k) {
+      const int a = f[k], b = f[(k + 1) % 3], c = f[(k + 2) % 3];
+      double t;
+      const double off = (closest_point_on_segment(q, m.points[a], m.points[b], &t) - q).norm();
+      if (off <= slack) {
+        region = k + 1;
+        break;
+      }
+      const bool beside = t > kSideShare && t < 1 - kSideShare;  // (near an end the corner is that vertex's)
+      if (!beside || off > kSideSplitShare * (m.points[b] - m.points[a]).norm()) continue;
+      const int y = across(a, b, c);
+      if (y < 0) continue;
+      const Vec3 &pa = m.points[a], &pb = m.points[b], &pc = m.points[c], &py = m.points[y];
+      const double angle = std::min({smallest_angle(pa, q, pc), smallest_angle(q, pb, pc), smallest_angle(pa, q, py), smallest_angle(q, pb, py)});
+      if (angle > best_angle) best_angle = angle, region = k + 1;
+    }
   }
   if (region >= 1 && region <= 3) {  // on edge (f[k], f[k+1]): split both facets on it
     const int k = region - 1, a = f[k], b = f[(k + 1) % 3];

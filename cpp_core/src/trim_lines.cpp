@@ -38,6 +38,7 @@ namespace {
 constexpr double kSnapKeepsAngle = 10 * M_PI / 180;  // facets around a vertex snapped from afar keep this
 constexpr double kNearShaped = 0.4;                   // x its shortest edge: snapped if its facets keep shape
 constexpr double kHairShare = 0.25;                   // x the tolerance: a dip of the band's edge this deep is a hair
+constexpr double kWeldShare = 0.01;                   // x the tolerance: a snap target this near a neighbour is taken
 
 // The direction a vertex on the mesh boundary may move in without moving the boundary: along its two
 // boundary edges where they run on straight (zero where they turn, or where more meet). Zero for a vertex
@@ -319,6 +320,11 @@ void SideTrim::snap_near_line(int v, VertexSide& s, const Vec3& away, bool on_en
       const Vec3 vw = mesh.point(w) - mesh.point(v), vq = q - mesh.point(v);
       if (!edit.moved.count(w) && (mesh.point(w) - q).norm() < move && vw.cross(vq).norm() <= 1e-3 * vw.norm() * vq.norm()) return;
     }
+  // Nor where a neighbour already is, or was snapped to (two vertices on an end face's edge, each snapped
+  // along its own crease to the band's corner: 3e-6 mm apart on a gmsh mesh of the L bracket at r = 6, and
+  // the strip between them a facet of no area).
+  for (int w : mesh.vertex_neighbours(v))
+    if ((edit.point(w) - q).norm() <= kWeldShare * opt.tolerance) return;
   const bool stays_on_end_plane = !on_end_plane || std::abs(ctx.past_end(q)) <= ctx.plane_slack;  // (e.g. along the end face's edge)
   if (!(stays_on_end_plane && (move < near_edges || ((on_crease ? move < near_line : move < kNearShaped * shortest) &&
                                                      snap_keeps_shape(mesh, edit, v, q, in_band)))))

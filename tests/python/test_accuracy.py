@@ -53,11 +53,9 @@ KNOWN_FAULTS = {
     "smoothness": set(_REFUSED),
     # Where the round meets the top face at a concave end cap, the cap's cusp (the arc leaves the
     # face's trace tangentially) makes one facet there under 10 degrees on the fine mesh.
-    # The mitred rim's fine mesh: where the mitre meets the top face, the second round's trim line has a
-    # point a hair (0.03 r) from the mitre's corner, and the facets between them are under 10 degrees.
     # The drafted wall's coarse mesh: the round's end cap beside the top face has facets of 5.8 degrees
     # (its end face's facets there are 23 degrees or more).
-    "quality": _CAD_CORNER_THIN | _REFUSED | {("pyramid", "cad"), ("pocket_edge", "fine"), ("pocket_rim_square", "fine"), ("pocket_edge_draft", "coarse")},
+    "quality": _CAD_CORNER_THIN | _REFUSED | {("pyramid", "cad"), ("pocket_edge", "fine"), ("pocket_edge_draft", "coarse")},
 }
 
 
