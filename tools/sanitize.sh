@@ -23,8 +23,11 @@ echo "== ctest (ASan + UBSan)"
 ctest --test-dir "$BUILD" --output-on-failure -j1 || status=1
 (($#)) || set -- "$ROOT/tests/python/test_api.py" "$ROOT/tests/python/test_bad_mesh.py"
 echo "== pytest with the sanitized module: $*"
-# (freecadcmd started from a test inherits the preloaded sanitizer runtime and needs minutes to start
-# under it: that test runs in the normal suite only.)
+# Left out here, run in the normal suite only: tests that start freecadcmd or the demo (a child inherits the
+# preloaded sanitizer runtime and needs minutes to start under it), tests of the command line run as a child
+# `python3 -m MeshRound.cli` (it imports the workbench from the source tree, not this build's), and the
+# cancel test's 0.5 s bound (the sanitized engine polls several times slower).
+DESELECT="freecadcmd or demo_runs or file_open_and_import or reported_on_freecads_console or command_line_max_radius or sweep_of_a_deck_with_includes or cancel_from_another_thread"
 LD_PRELOAD="$(gcc -print-file-name=libasan.so):$(gcc -print-file-name=libubsan.so)" MESHROUND_MOD_DIR="$MOD" \
-  /usr/bin/python3 -m pytest -q -p no:cacheprovider -k "not freecadcmd" "$@" || status=1
+  /usr/bin/python3 -m pytest -q -p no:cacheprovider -k "not ($DESELECT)" "$@" || status=1
 exit $status
