@@ -18,16 +18,12 @@ import Mesh
 import MeshRound
 
 GMSH = shutil.which("gmsh")
-# name -> (builder, r): the corner cases of tests/python/cases.py
+# name -> (builder, r): the corner cases of tests/python/cases.py (the whole pocket is not one of its SPECS)
 CORNER_CASES = {
     "pocket_all": (cases.pocket_all(), 2.0),
     "pocket_all_draft": (cases.pocket_all(10.0), 2.0),
-    "pocket_rim_square": (cases.pocket_rim_square(), 2.0),
-    "pocket_rim_walls": (cases.pocket_rim_walls(), 2.0),
-    "pyramid": (cases.pyramid, 4.0),
-    "box_corner": (cases.box_corner, 5.0),
-    "l_bracket_45": (cases.l_bracket(0), 2.0),
-    "l_bracket_135": (cases.l_bracket(1), 2.0),
+    **{name: cases.SPECS[name][:2] for name in
+       ["pocket_rim_square", "pocket_rim_walls", "pyramid", "box_corner", "l_bracket_45", "l_bracket_135"]},
 }
 ELEMENT = {"fine": 0.5, "coarse": 2.5}  # x r
 
