@@ -256,8 +256,18 @@ void SideTrim::refine_line_in_facet(int f, int from, double u_from, int to, doub
   if (!(want <= 1e9)) want = INFINITY;  // (NaN too): refused by the budget below, never cast
   edit.check_budget(2.0 * (double(edit.new_points.size()) + want), "trim line points");
   const int segs = int(want);
-  for (int s = 1; s < segs; ++s) {
-    const double u = ctx.surface.wrap(u_from + du * s / segs);
+  // The points are spaced evenly along the line, not in u: over a carried end's straight piece the
+  // surface's u runs on while its points barely move (5 mm of u over the last 0.25 mm before a sphere
+  // corner's plane), and a point spaced in u there lands a hair from the band's corner, leaving a sliver.
+  const int fine = segs > 1 ? 8 * segs : 0;
+  std::vector<double> length(fine + 1, 0.0);
+  for (int k = 1; k <= fine; ++k)
+    length[k] = length[k - 1] + (on_facet(u_from + du * k / fine) - on_facet(u_from + du * (k - 1) / fine)).norm();
+  for (int s = 1, k = 0; s < segs; ++s) {
+    const double at = length[fine] * s / segs;
+    while (k + 1 < fine && length[k + 1] < at) ++k;
+    const double share = length[k + 1] > length[k] ? (at - length[k]) / (length[k + 1] - length[k]) : 0.0;
+    const double u = ctx.surface.wrap(u_from + du * (k + share) / fine);
     const Vec3 q = on_facet(u);
     // Where the line leaves a kept corner snapped onto it nearly along the facet's side, a point of it can
     // fall a hair outside the facet: it would fold the polygon back on that side. None there.
