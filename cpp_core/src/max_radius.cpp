@@ -290,6 +290,20 @@ std::vector<ChainRoom> max_radius(const Points& V, const Triangles& F, const std
   std::vector<SharpChain> chains = find_chains(mesh, seeds, o.feature_angle_deg, o.search_radius);
   for (SharpChain& c : chains) c.index_segments();  // project() is called for every ball's contacts
   const double size = (V.colwise().maxCoeff() - V.colwise().minCoeff()).norm();
+  std::vector<Vec3> picked;
+  for (const SharpChain& c : chains) picked.push_back(c.point_at(0.5 * c.length));
+  // Rolled corners (network.h) are made in two stages: round_edges finds the corners of the chains made first
+  // among those alone, and traces the others anew on their result, where their ends run on around the first
+  // rounds' (no corner there to plan). The stages do not depend on one radius for all.
+  std::vector<int> stage(chains.size(), 0);
+  std::vector<RolledCorner> rolled;
+  try {
+    RoundOptions any = checked;
+    any.radius = 1.0;
+    stage = plan_stages(mesh, chains, picked, any, &rolled);
+  } catch (const RoundingError& e) {
+    if (e.code != ErrorCode::CornerNotBlendable) throw;
+  }
   std::vector<ChainRoom> out;
   for (size_t k = 0; k < chains.size(); ++k) {
     std::unordered_set<std::uint64_t> other_edges;
@@ -306,11 +320,18 @@ std::vector<ChainRoom> max_radius(const Points& V, const Triangles& F, const std
     ends.corners = [&, k](double r) {
       RoundOptions at_r = checked;
       at_r.radius = r;
-      std::vector<Vec3> picked;
-      for (const SharpChain& c : chains) picked.push_back(c.point_at(0.5 * c.length));
+      if (!rolled.empty() && stage[k] != 0) return NetworkPart{};
+      std::vector<SharpChain> same;  // the chains made in k's stage, k among them
+      std::vector<Vec3> same_picked;
+      size_t at = 0;
+      for (size_t j = 0; j < chains.size(); ++j)
+        if (rolled.empty() || stage[j] == 0) {
+          if (j == k) at = same.size();
+          same.push_back(chains[j]), same_picked.push_back(picked[j]);
+        }
       std::vector<std::pair<SphereCorner, size_t>> spheres;
       try {
-        return find_corners(mesh, chains, picked, at_r, &spheres)[k];
+        return find_corners(mesh, same, same_picked, at_r, &spheres)[at];
       } catch (const RoundingError&) {
         return NetworkPart{};
       }

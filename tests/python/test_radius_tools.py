@@ -145,6 +145,30 @@ def test_max_radius_of_a_network_matches_its_closed_form_and_the_engine(name, bu
     assert err.value.code == "radius_too_large", str(err.value)
 
 
+def test_max_radius_of_a_pocket_with_rolled_corners_is_what_round_edges_takes():
+    """Every edge of the 10 deg drafted pocket (rim, wall corners, floor): round_edges makes the wall corners and
+    the floor first (rolled corners at the rim, network.h), so a wall corner's round ends at a sphere corner on
+    the floor, whose setback may take half the 12.4 mm chain. max_radius plans the ends with the corners of the
+    chains made in the same stage: before, it planned none (the network's corners as one stage are refused) and
+    read 7.26 where round_edges refused 7.1 (the setbacks)."""
+    solid, edges = cases.pocket_all(10.0)()
+    seeds = [e.valueAt(0.5 * (e.FirstParameter + e.LastParameter)) for e in edges]
+    mesh = MeshPart.meshFromShape(Shape=solid, MaxLength=2.0)
+    V0, F0 = meshconv.mesh_to_arrays(mesh)
+    found = MeshRound.max_radius(mesh, seeds)
+    limit = min(f.radius for f in found)
+    # (the wall corner's setbacks; the floor chains meeting it there stop at the same radius)
+    setback = [f for f in found if f.radius <= limit * (1 + 1e-3) and f.why == "end_setback"]
+    assert setback, [f.reason for f in found]
+    assert abs(setback[0].where.z - 18) < 0.1 or abs(setback[0].where.z - 30) < 0.1, setback[0].where  # a wall corner's end
+    tightest = setback[0]
+    res = MeshRound.round_edges(mesh, seeds, 0.98 * tightest.radius)
+    assert soundness.problems(V0, F0, res.vertices, res.triangles) == []
+    with pytest.raises(MeshRound.RoundingError) as err:
+        MeshRound.round_edges(mesh, seeds, 1.02 * tightest.radius)
+    assert err.value.code == "radius_too_large" and "too short" in str(err.value), str(err.value)
+
+
 def test_bad_input_is_refused_with_its_code():
     mesh = MeshPart.meshFromShape(Shape=Part.makeBox(100, 60, 40), MaxLength=8.0)
     with pytest.raises(MeshRound.RoundingError) as err:

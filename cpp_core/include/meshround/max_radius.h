@@ -14,8 +14,10 @@
 // no ball touches both sides, or -- with several chains picked -- when its contact on a face shared with
 // another picked chain (one sharing no vertex with it) reaches into that chain's band, the other chain's
 // ball of the same radius solved there too (round_edges rounds them one after the other, the later one's
-// base mesh stopping at the earlier round). Not measured here: the ends' setbacks at corners and leaning end faces
-// (refused by round_edges as corner_not_blendable, "too short"), and the rounding's own output check.
+// base mesh stopping at the earlier round). An open chain's ends are planned as round_edges plans them (ends.h
+// plan_ends, "end_setback"): its end faces, and its corners with the picked chains rounded in the same stage
+// (with rolled corners, the chains made first; the others' ends run on around those rounds and are taken as
+// end faces). Not measured here: the rounding's own output check.
 #pragma once
 #include <string>
 #include <vector>
