@@ -49,6 +49,11 @@ EndCut open_end_cut(const MeshTopology& mesh, const SharpChain& chain, bool at_s
 void check_open_end(const MeshTopology& mesh, const SharpChain& chain, const RadiusLaw& law, double tolerance, bool at_start,
                     const EndCut& cut);
 
+// Vertex v lies on a hole of the mesh, not on its edge: its boundary loop closes within 8 r and spans less than
+// half the mesh's box. The one rule a hole is named by: at an open chain end (non_manifold_input) and where a
+// ball would reach it (spine.h solve_station, radius_too_large: a pin hole limits the radius as a wall does).
+bool on_hole(const MeshTopology& mesh, int v, double r);
+
 constexpr double kMinCrossing = 0.3;  // |cos| between a chain and the normal of the plane that ends it, at least
 
 // Where a side's base mesh goes on past a capped end's plane (a pocket's top face around its corner),

@@ -73,25 +73,36 @@ OffPlane boundary_off_plane(const MeshTopology& mesh, int v, const EndCut& cut, 
   return worst;
 }
 
-// The length of the boundary loop through v if it closes within `limit`, else infinity.
-double short_loop_length(const MeshTopology& mesh, int v, double limit) {
+// The box of the boundary loop through v if it closes within `limit` (its length), else an empty box.
+Eigen::AlignedBox3d short_loop_box(const MeshTopology& mesh, int v, double limit) {
   for (int w0 : mesh.vertex_neighbours(v)) {
     if (mesh.edge_facet_count(v, w0) != 1) continue;
     double length = (mesh.point(w0) - mesh.point(v)).norm();
+    Eigen::AlignedBox3d box(mesh.point(v));
     for (int prev = v, cur = w0; cur >= 0 && length <= limit;) {
-      if (cur == v) return length;
+      if (cur == v) return box;
+      box.extend(mesh.point(cur));
       const int next = next_on_boundary(mesh, prev, cur);
       if (next >= 0) length += (mesh.point(next) - mesh.point(cur)).norm();
       prev = cur, cur = next;
     }
-    return INFINITY;
+    return {};
   }
-  return INFINITY;
+  return {};
 }
 
-constexpr double kHoleLoop = 8.0;  // x r: a boundary loop this short at a chain's end is a hole, not the mesh's edge
+constexpr double kHoleLoop = 8.0;   // x r: a boundary loop this short near a round may be a hole, not the mesh's edge,
+constexpr double kHoleSize = 0.5;   // when it spans less than this share of the mesh's box (a sheet's edge spans it all)
 
 }  // namespace
+
+bool on_hole(const MeshTopology& mesh, int v, double r) {
+  const Eigen::AlignedBox3d loop = short_loop_box(mesh, v, kHoleLoop * r);
+  if (loop.isEmpty()) return false;
+  Eigen::AlignedBox3d all;
+  for (int w = 0; w < mesh.num_vertices(); ++w) all.extend(mesh.point(w));
+  return loop.diagonal().norm() < kHoleSize * all.diagonal().norm();
+}
 
 // The end of a chain that runs off the mesh's edge, refused where it cannot be made (ends.h open_end_cut):
 // a hole there, an edge nearly along the chain, an edge that is not one plane out to the contacts.
@@ -103,7 +114,7 @@ void check_open_end(const MeshTopology& mesh, const SharpChain& chain, const Rad
   const auto [off, within, at] = boundary_off_plane(mesh, v, cut, (1 + 1e-9) * end_profile_reach(mesh, chain, law, at_start));
   const bool along = std::abs(cut.along.dot(cut.normal)) < kMinCrossing;
   if (!along && off <= tolerance + on_plane_slack(within, p.cwiseAbs().maxCoeff())) return;
-  if (short_loop_length(mesh, v, kHoleLoop * r) <= kHoleLoop * r)
+  if (on_hole(mesh, v, r))
     throw InputFlaw("the mesh is open (a hole in it) at the end of the chain at " + format_point(p) + "; fill the hole first", p);
   if (along)
     throw RoundingError(ErrorCode::CornerNotBlendable,

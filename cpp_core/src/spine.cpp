@@ -1,6 +1,7 @@
 #include "meshround/spine.h"
 
 #include "box_tree.h"
+#include "ends.h"
 #include "meshround/cancel.h"
 
 #include <Eigen/Dense>
@@ -312,6 +313,11 @@ ProfileStation solve_station(const SpineContext& ctx, double s, double r) {
       throw RoundingError(ErrorCode::RadiusTooLarge, "no ball of radius " + format_number(r) + " touches both base meshes at " + format_point(e) +
                           ": the radius is too large for the faces there");
     case StationMisfit::Wall:
+      // (the wall edge touched, or for a vertex contact one at it: either end on a hole's loop)
+      if (fit.wall_edge != ~0ull && (on_hole(ctx.mesh, int(fit.wall_edge >> 32), r) || on_hole(ctx.mesh, int(fit.wall_edge & 0xffffffffu), r)))
+        throw RoundingError(ErrorCode::RadiusTooLarge, "radius " + format_number(r) + " is too large at " + format_point(e) +
+                            ": the ball would reach the edge of a hole in the mesh at " + format_point(fit.at) +
+                            " (fill the hole first if it is a flaw of the mesh, or use a smaller radius)");
       throw RoundingError(ErrorCode::RadiusTooLarge, "radius " + format_number(r) + " is too large at " + format_point(e) +
                           ": the ball would reach past the next sharp edge or the mesh boundary at " + format_point(fit.at));
     case StationMisfit::BeyondReach:

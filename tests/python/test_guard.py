@@ -8,6 +8,8 @@ a sound mesh. Behind them the engine's output guard refuses anything unsound wit
   * a few facets missing beside the chain, or a couple of mm from it inside the band;
   * a flipped facet beside the chain.
 """
+import re
+
 import numpy as np
 import pytest
 
@@ -104,10 +106,18 @@ def test_a_hole_beside_the_chain_is_refused_or_rounded_soundly(box_arrays, where
 def test_a_hole_inside_the_band_is_refused_or_rounded_soundly(box_arrays, where, count):
     V, F, result, error = round_with_hole(box_arrays, where, count)
     if error is not None:
-        # The ball would touch the hole's edge: the face beside the chain is too short there.
-        assert error.code == "radius_too_large" and "mesh boundary at (" in str(error), str(error)
+        # The ball would touch the hole's edge: the room beside the chain ends there. Named as a hole, where it is
+        # (it read "the next sharp edge or the mesh boundary"): a flaw to fill, or a pin hole that limits the radius.
+        assert error.code == "radius_too_large" and "edge of a hole in the mesh at (" in str(error), str(error)
+        assert named_point_near(error, where, 3.0), str(error)
     else:
         assert_sound(V, F, result)
+
+
+def named_point_near(error, where, distance):
+    """The last point the message names lies within `distance` of `where`."""
+    x, y, z = map(float, re.findall(r"\(([-\d.e]+), ([-\d.e]+), ([-\d.e]+)\)", str(error))[-1])
+    return np.linalg.norm(np.array([x, y, z]) - np.array(where)) <= distance
 
 
 # ------------------------------------------------------------------------------- 5. a flipped facet
@@ -144,7 +154,7 @@ def test_a_hole_at_a_corner_is_named_as_the_inputs_or_rounded_soundly(box_arrays
     except MeshRound.RoundingError as error:
         assert np.array_equal(F, F_before)
         if error.code == "radius_too_large":  # the ball would touch the hole's edge, as beside one chain
-            assert "mesh boundary at (" in str(error), str(error)
+            assert "edge of a hole in the mesh at (" in str(error), str(error)
         else:
             assert error.code == "non_manifold_input", str(error)
             assert "the mesh is open" in str(error), str(error)
