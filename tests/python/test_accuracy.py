@@ -190,3 +190,33 @@ def test_no_slivers_made(name, variant):
         return
     assert row["min_angle_input_near_deg"] < MIN_ANGLE_DEG, "slivers made where the input has none"
     assert row["input_forces_small_angles"], "the report does not say the input forced small angles"
+
+
+def test_no_sliver_beside_a_sphere_corner_on_a_cad_mesh():
+    """The box corner's three rounds on its CAD mesh (each face two facets): the new facets within 1.5 r of the
+    corner vertex are 10 deg or more. A cut facet's extra trim points were spaced in the surface's parameter,
+    which at a sphere corner's plane runs 5 mm over the last 0.25 mm of the line: a point landed 0.05 mm from
+    the band's corner and left facets of 3.0 deg there. (Farther out, on the 100 x 40 faces, the reach leaves
+    thin facets: KNOWN_FAULTS.)"""
+    import MeshRound
+    case = cases.case("box_corner")
+    mesh = case.mesh("cad")
+    res = MeshRound.round_edges(mesh, case.seeds, case.radius, tolerance=case.tolerance)
+    V0, F0 = reference.mesh_arrays(mesh)
+    V1, F1 = reference.mesh_arrays(res.mesh)
+    old = {tuple(sorted(map(tuple, V0[f]))) for f in F0}
+    corner = np.array([100.0, 60.0, 40.0])
+    near = [f for f in F1 if tuple(sorted(map(tuple, V1[f]))) not in old
+            and np.linalg.norm(V1[f].mean(axis=0) - corner) <= 1.5 * case.radius]
+    assert len(near) > 100  # the corner's patch and the rounds' ends
+    smallest = min(min_angle_deg(V1[f]) for f in near)
+    assert smallest >= 10.0, smallest
+
+
+def min_angle_deg(P):
+    """The smallest angle of triangle P (3 x 3), degrees."""
+    out = []
+    for i in range(3):
+        u, w = P[(i + 1) % 3] - P[i], P[(i + 2) % 3] - P[i]
+        out.append(np.degrees(np.arccos(np.clip(u @ w / np.linalg.norm(u) / np.linalg.norm(w), -1, 1))))
+    return min(out)
