@@ -2,6 +2,7 @@
 #include <Eigen/Dense>
 #include <Eigen/Eigenvalues>
 
+#include "facet_quality.h"
 #include "strip_facets.h"
 
 namespace meshround::strip_detail {
@@ -19,6 +20,8 @@ namespace meshround::strip_detail {
 // their polygon). A round all around a loop (a circular pocket's or boss's rim: no end) is one too, its
 // corner line a closed polygon.
 constexpr double kStationTurnDeg = 15;  // largest turn of the corner line between two stations
+constexpr double kShapedDeg = 10;       // a side-B facet with a smaller angle is a sliver (its normal not trusted)
+constexpr double kFineShare = 0.25;     // x the round's height: a mesh this fine has its wall fitted off a sliver border
 constexpr double kJoinDeg = 80;         // see recognise_curved's flood
 
 // The stations of a round all around a loop, in order: each next one at most kLoopGap times the median
@@ -110,8 +113,8 @@ struct CornerCurve {
 // plane A in the station's section) changes slowly along a wall, while the corner line itself may bend
 // sharply (a straight run into an arc): each station's tilt is put on a line fitted to the tilts of the
 // kSmoothStations stations each side (those far off the window's median left out), its plane B turned to it
-// about the axis through its border vertex, and its corner solved again (a station moved by over a fifth of
-// its round's width is kept as measured: not a scatter). `border`: each station's border B vertex.
+// about the axis through its border vertex's foot on it, and its corner solved again (a station moved by over a
+// fifth of its round's width is kept as measured: not a scatter). `border`: each station's border B vertex.
 constexpr int kSmoothStations = 5;
 constexpr double kSmoothOutlier = 3;
 constexpr double kSmoothFloorDeg = 0.05;
@@ -151,7 +154,9 @@ void smooth_tilts(std::vector<StripFrame>& station, const std::vector<Vec3>& bor
     const Vec3 level = F.normal[1] - F.normal[0] * F.normal[0].dot(F.normal[1]);  // side B's normal in plane A
     if (level.norm() < 1e-9) continue;
     const Vec3 nB = std::cos(tilt[size_t(i)]) * level.normalized() + std::sin(tilt[size_t(i)]) * F.normal[0];
-    const Vec3& b = border[size_t(i)];
+    // (about b's foot on the plane: the plane runs through b, or through the wall beside b when b sits a hair
+    // up the round, wall_normal_in_section)
+    const Vec3 b = border[size_t(i)] - F.normal[1] * (F.normal[1].dot(border[size_t(i)]) - F.offset[1]);
     const Vec3 c = frame_solve(F.normal[0], nB, F.axis, Vec3(F.offset[0], nB.dot(b), F.axis.dot(b)));
     if ((c - F.corner).norm() > 0.2 * (F.corner - b).norm()) continue;  // not a scatter: keep it as measured
     F.normal[1] = nB, F.offset[1] = nB.dot(b), F.corner = c;
@@ -342,12 +347,18 @@ void flood_curved(const MeshTopology& mesh, Facets& fx, int f0, const SharpenOpt
 }
 
 // Side B's tangent plane at border B vertex b, its normal `nB` from the facets around b made sharper (the
-// facets of a tessellated curved wall tilt by their chords): side B's line in b's own section, through b and
-// the side-B vertices within three rings of it that lie nearly in that section (|along| < 0.35 of the ring's
-// mean edge), projected into it; nB is normal to it and to the axis.
-Vec3 wall_normal_in_section(const MeshTopology& mesh, Facets& fx, const RoundStrip& strip, const CurvedPasses& pass, int b, Vec3 nB) {
+// facets of a tessellated curved wall tilt by their chords): side B's line in b's own section, through the
+// side-B vertices within three rings of b that lie nearly in that section (|along| < 0.35 of the ring's mean
+// edge), projected into it; nB is normal to it and to the axis, and the plane passes through *on_plane.
+// The line is fitted to those vertices clear of the border when they spread over a fifth of that edge: a
+// border vertex may sit a hair up the round (a mesher's rows of slivers along the contact line, 0.66 and
+// 5.6 deg up the S plate's 4 mm round on a 1 mm mesh, 0.02 mm off the wall), and a plane through it tilts.
+// Else it runs from b through the others.
+Vec3 wall_normal_in_section(const MeshTopology& mesh, Facets& fx, const RoundStrip& strip, const CurvedPasses& pass,
+                            const std::unordered_set<int>& border, int b, bool on_sliver, Vec3 nB, Vec3* on_plane) {
   auto side_of = [&](int g) { return pass.side_of(fx, strip, g); };
-  const Vec3 t = strip.normal[0].cross(nB).normalized();
+  const Vec3 t = strip.normal[0].cross(nB).normalized(), pb = mesh.point(b);
+  *on_plane = pb;
   std::unordered_set<int> ring{b};
   for (int step = 0; step < 3; ++step) {
     std::vector<int> grow(ring.begin(), ring.end());
@@ -361,22 +372,42 @@ Vec3 wall_normal_in_section(const MeshTopology& mesh, Facets& fx, const RoundStr
   for (const int* g = mesh.facets_begin(b); g != mesh.facets_end(b); ++g)
     for (int k = 0; k < 3; ++k) h += (mesh.corner(*g, k) - mesh.corner(*g, (k + 1) % 3)).norm(), ++nh;
   h /= std::max(nh, 1);
-  Eigen::Matrix3d C = Eigen::Matrix3d::Zero();
-  int used = 0;
+  std::vector<Vec3> section;  // the ring's vertices in b's section, relative to b, projected into it
   for (int v : ring) {
-    const Vec3 d = mesh.point(v) - mesh.point(b);
-    if (v == b || std::abs(t.dot(d)) > 0.35 * h || d.norm() < 0.2 * h) continue;
-    const Vec3 q = d - t * t.dot(d);
-    C += q * q.transpose() / q.squaredNorm(), ++used;
+    const Vec3 d = mesh.point(v) - pb;
+    if (v != b && std::abs(t.dot(d)) <= 0.35 * h && d.norm() >= 0.2 * h) section.push_back(d - t * t.dot(d));
   }
-  if (used >= 1) {
-    Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(C);
-    const Vec3 down = eig.eigenvectors().col(2).normalized();
-    Vec3 fit = down.cross(t).normalized();
-    if (fit.dot(nB) < 0) fit = -fit;
-    if (angle_deg(fit, nB) < 5) nB = fit;
+  // Those clear of the border, within `along` of the section (out to a mean edge where too few are nearer).
+  Eigen::Matrix3d C = Eigen::Matrix3d::Zero();
+  Vec3 mean = Vec3::Zero();
+  double spread = 0;
+  // (only on a fine mesh, edges under a quarter of the round's height: there the wall's curve in plan leaves a
+  // window of an edge each way within a hair of its tangent plane; on a coarse one b is on the wall)
+  const double height = std::abs(strip.normal[0].dot(pb) - strip.offset[0]);
+  for (double along : {0.35 * h, h}) {
+    if (!on_sliver || h > kFineShare * height) break;
+    std::vector<Vec3> clear;
+    for (int v : ring) {
+      const Vec3 d = mesh.point(v) - pb;
+      if (!border.count(v) && std::abs(t.dot(d)) <= along) clear.push_back(d - t * t.dot(d));
+    }
+    C.setZero(), mean.setZero(), spread = 0;
+    for (const Vec3& q : clear) mean += q / double(clear.size());
+    for (const Vec3& q : clear) C += (q - mean) * (q - mean).transpose(), spread = std::max(spread, (q - mean).norm());
+    if (clear.size() >= 2 && spread >= 0.2 * h) break;
   }
-  return nB;
+  if (spread < 0.2 * h) {
+    C.setZero(), mean.setZero();
+    for (const Vec3& q : section) C += q * q.transpose() / q.squaredNorm();
+    if (section.empty()) return nB;
+  }
+  Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(C);
+  const Vec3 down = eig.eigenvectors().col(2).normalized();
+  Vec3 fit = down.cross(t).normalized();
+  if (fit.dot(nB) < 0) fit = -fit;
+  if (angle_deg(fit, nB) >= 5) return nB;
+  *on_plane = pb + mean;
+  return fit;
 }
 
 // A station per border B vertex (pass.station, station_vertex): plane A and side B's tangent plane there, their
@@ -401,22 +432,43 @@ void make_stations(const MeshTopology& mesh, Facets& fx, const Vec3& where, Roun
     anchor.emplace(v, fx.normal(wall));
   }
   if (anchor.size() < 2) not_a_round("its curved side's border has fewer than two vertices", where);
+  std::unordered_set<int> border;
+  for (const auto& [v, g] : border_b) border.insert(v);
   strip.border_count[1] = int(anchor.size());
   for (const auto& [b, an] : anchor) {
+    // Where b's side-B facets are all slivers (a mesher's row of slivers along the contact line: b sits a hair
+    // up the round), their normals turn with their vertices' float32 places (a 3.8 deg facet on the S plate's
+    // 1 mm mesh, 1.4 deg off the wall in plan): its neighbours' side-B facets that are not slivers serve,
+    // weighted by area, and the wall's line in b's section is fitted off the border (wall_normal_in_section).
     Vec3 nB = Vec3::Zero();
+    int walls = 0, shaped_walls = 0;
+    auto shaped = [&](int g) { return smallest_angle_deg(mesh.corner(g, 0), mesh.corner(g, 1), mesh.corner(g, 2)) >= kShapedDeg; };
+    auto wall = [&](int g) {
+      return !strip.facet_set.count(g) && side_of(g) == 1 && !(closed && fx.cap(g)) && angle_deg(fx.normal(g), an) <= kStationTurnDeg;
+    };
     for (const int* g = mesh.facets_begin(b); g != mesh.facets_end(b); ++g) {
-      if (strip.facet_set.count(*g) || side_of(*g) != 1 || (closed && fx.cap(*g)) || angle_deg(fx.normal(*g), an) > kStationTurnDeg) continue;
+      if (!wall(*g)) continue;
       int k = 0;
       while (mesh.F(*g, k) != b) ++k;
       const Vec3 u = mesh.point(mesh.F(*g, (k + 1) % 3)) - mesh.point(b), w = mesh.point(mesh.F(*g, (k + 2) % 3)) - mesh.point(b);
       nB += std::atan2(u.cross(w).norm(), u.dot(w)) * fx.normal(*g);  // weighted by the facet's angle at b
+      ++walls, shaped_walls += shaped(*g);
+    }
+    const bool on_sliver = walls > 0 && shaped_walls == 0;
+    if (on_sliver) {
+      Vec3 around = Vec3::Zero();
+      for (int w : mesh.vertex_neighbours(b))
+        for (const int* g = mesh.facets_begin(w); g != mesh.facets_end(w); ++g)
+          if (wall(*g) && shaped(*g)) around += fx.area(*g) * fx.normal(*g);
+      if (around.norm() > 1e-12) nB = around;
     }
     if (nB.norm() < 1e-12) continue;
     nB.normalize();
-    nB = wall_normal_in_section(mesh, fx, strip, pass, b, nB);
+    Vec3 on_wall;
+    nB = wall_normal_in_section(mesh, fx, strip, pass, border, b, on_sliver, nB, &on_wall);
     StripFrame F;
     F.normal[0] = strip.normal[0], F.offset[0] = strip.offset[0];
-    F.normal[1] = nB, F.offset[1] = F.normal[1].dot(mesh.point(b));
+    F.normal[1] = nB, F.offset[1] = F.normal[1].dot(on_wall);
     F.axis = F.normal[0].cross(F.normal[1]);
     if (F.axis.norm() < 1e-6) not_a_round("its two sides are parallel at " + format_point(mesh.point(b)), where);
     F.axis.normalize();
