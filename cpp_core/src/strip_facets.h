@@ -1,5 +1,5 @@
-// Private to the strip recognition (strip.cpp, strip_curved.cpp): the facets' normals and neighbours,
-// the flood of a strip's facets, and the refusal they share.
+// Private to the strip recognition (strip.cpp, strip_curved.cpp, strip_line.cpp): the facets' normals and
+// neighbours, the flood of a strip's facets, and the refusal they share.
 #pragma once
 #include <algorithm>
 #include <cmath>
