@@ -83,11 +83,13 @@ PollLog watch_polls(const Input& in, RoundReport* report = nullptr) {
 double cancel_after(const Input& in, double after) {
   std::atomic<bool> flag{false};
   std::atomic<long> polls_after{0};
+  std::atomic<long long> last_poll{0};  // Clock ticks of the latest poll
   RoundOptions opt;
   opt.radius = in.radius;
   opt.cancelled = [&] {
     const bool set = flag.load(std::memory_order_relaxed);
     if (set) ++polls_after;
+    last_poll.store(Clock::now().time_since_epoch().count());
     return set;
   };
   Clock::time_point requested;
@@ -106,7 +108,9 @@ double cancel_after(const Input& in, double after) {
   }
   const auto returned = Clock::now();
   canceller.join();
-  if (!cancelled && returned <= requested) return -1;  // the run ended before the request: nothing measured
+  // The run ended before the request, or the request came after its last poll (the run's tail, where no poll
+  // is due: a run faster than the one timed, on a machine whose load dropped): nothing measured.
+  if (!cancelled && (returned <= requested || requested.time_since_epoch().count() >= last_poll.load())) return -1;
   EXPECT_TRUE(cancelled) << "the run did not stop";
   // The first poll that sees the request stops the run; a pass that runs on several threads (parallel.h)
   // may have one poll in flight on each of them.
