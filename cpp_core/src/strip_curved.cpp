@@ -253,8 +253,9 @@ void make_stations(const MeshTopology& mesh, Facets& fx, const Vec3& where, Roun
     Vec3 nB = Vec3::Zero();
     int walls = 0, shaped_walls = 0;
     auto shaped = [&](int g) { return smallest_angle_deg(mesh.corner(g, 0), mesh.corner(g, 1), mesh.corner(g, 2)) >= kShapedDeg; };
+    const Vec3 wall_normal = an;  // (a lambda may not capture a structured binding before C++20: clang refuses it)
     auto wall = [&](int g) {
-      return !strip.facet_set.count(g) && side_of(g) == 1 && !(closed && fx.cap(g)) && angle_deg(fx.normal(g), an) <= kStationTurnDeg;
+      return !strip.facet_set.count(g) && side_of(g) == 1 && !(closed && fx.cap(g)) && angle_deg(fx.normal(g), wall_normal) <= kStationTurnDeg;
     };
     for (const int* g = mesh.facets_begin(b); g != mesh.facets_end(b); ++g) {
       if (!wall(*g)) continue;
