@@ -261,8 +261,11 @@ void SideTrim::refine_line_in_facet(int f, int from, double u_from, int to, doub
   // corner's plane), and a point spaced in u there lands a hair from the band's corner, leaving a sliver.
   const int fine = segs > 1 ? 8 * segs : 0;
   std::vector<double> length(fine + 1, 0.0);
-  for (int k = 1; k <= fine; ++k)
-    length[k] = length[k - 1] + (on_facet(u_from + du * k / fine) - on_facet(u_from + du * (k - 1) / fine)).norm();
+  Vec3 last = fine > 0 ? on_facet(u_from) : Vec3::Zero();
+  for (int k = 1; k <= fine; ++k) {  // (each sample evaluated once)
+    const Vec3 next = on_facet(u_from + du * k / fine);
+    length[k] = length[k - 1] + (next - last).norm(), last = next;
+  }
   for (int s = 1, k = 0; s < segs; ++s) {
     const double at = length[fine] * s / segs;
     while (k + 1 < fine && length[k + 1] < at) ++k;
