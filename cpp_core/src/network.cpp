@@ -433,4 +433,17 @@ void plan_corners(const MeshTopology& input, const PickedChains& picked, const R
   }
 }
 
+std::function<bool(const Vec3&)> within_reach_of(const std::vector<SharpChain>& chains, const std::vector<RoundOptions>& options) {
+  std::vector<double> reach;
+  for (const RoundOptions& o : options) reach.push_back(o.reach * o.max_radius());
+  return [&chains, reach](const Vec3& p) {
+    for (size_t k = 0; k < chains.size(); ++k) {
+      double d;
+      chains[k].project(p, &d);
+      if (d <= reach[k]) return true;
+    }
+    return false;
+  };
+}
+
 }  // namespace meshround

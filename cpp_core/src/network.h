@@ -3,6 +3,7 @@
 // sphere corner (sphere_corner.h) between three or more.
 #pragma once
 #include <array>
+#include <functional>
 #include <utility>
 #include <vector>
 
@@ -80,6 +81,9 @@ void plan_corners(const MeshTopology& input, const PickedChains& picked, const R
 // a point far from every chain.
 std::vector<RoundOptions> options_per_chain(const RoundOptions& opt, const std::vector<SharpChain>& chains,
                                             const std::vector<Vec3>& picked);
+
+// Where a network's passes may place points: within the reach (reach x its largest radius) of any of its chains.
+std::function<bool(const Vec3&)> within_reach_of(const std::vector<SharpChain>& chains, const std::vector<RoundOptions>& options);
 
 // One radius along the whole chain (a chain's own options): no law, or a law whose control points all give
 // the same radius; and that radius (the first control point's, for a law).

@@ -512,7 +512,10 @@ RoundResult round_edges_after(const Points& V, const Triangles& F, const std::ve
     blend_sphere_corner(cur_V, cur_F, corner, tol, chains[k], chain_options[k].reach * corner.radius, step);
     apply_step(step, false);
   }
-  if (passes > 1) delta = delta_from_lineage(V, F, cur_V, cur_F, lineage);
+  if (passes > 1) {
+    delta = delta_from_lineage(V, F, cur_V, cur_F, lineage);
+    if (remesh_flat_patches(V, F, delta, within_reach_of(chains, chain_options))) apply_delta(V, F, delta, cur_V, cur_F);
+  }
   // Later rounds and corner patches replace facets that earlier rounds made (and counted): the new facets
   // are counted again, within the chains' reach.
   if (std::any_of(network.begin(), network.end(), [](const NetworkPart& net) { return !net.corners.empty(); })) {

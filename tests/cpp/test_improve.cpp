@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <map>
 
 #include "meshround/improve.h"
 
@@ -125,6 +126,91 @@ TEST(ImproveNewFacets, SlidesACreaseVertexThatCannotGoToWhereItsFacetsAreBest) {
   EXPECT_LT(at.x(), 7.0);
   EXPECT_EQ(crease.edit.added.size(), 5u);
   EXPECT_NEAR(crease.smallest_angle_deg(), std::atan2(4.0, 5.0) * 180 / M_PI, 1e-9);
+}
+
+// A network's flat patch (remesh_flat_patches): a face 95 x 35 whose made facets fan from its far corner
+// (0, 0) to a trim line of 39 points along y = 35, as an earlier round's trim leaves it for the next one to
+// cut; points may go only within 10 of the line (the reach).
+struct Fan {
+  Points V;
+  Triangles F;
+  std::vector<int> ring;  // the outline, counter-clockwise seen from +z
+  explicit Fan(bool inner_input_vertex = false) {
+    std::vector<Vec3> P{{0, 0, 0}, {95, 0, 0}};
+    for (int i = 0; i <= 38; ++i) P.push_back({95 - 2.5 * i, 35, 0});
+    for (int v = 0; v < int(P.size()); ++v) ring.push_back(v);
+    std::vector<std::array<int, 3>> T{{0, 1, 2}};
+    for (int i = 2; i + 1 < int(P.size()); ++i) T.push_back({0, i, i + 1});
+    if (inner_input_vertex) {  // a vertex inside the face: the fan's second facet split at its centroid
+      P.push_back((P[0] + P[2] + P[3]) / 3);
+      const int c = int(P.size()) - 1;
+      const auto t = T[1];
+      T[1] = {t[0], t[1], c}, T.push_back({t[1], t[2], c}), T.push_back({t[2], t[0], c});
+    }
+    V.resize(long(P.size()), 3);
+    for (int v = 0; v < int(P.size()); ++v) V.row(v) = P[size_t(v)].transpose();
+    F.resize(long(T.size()), 3);
+    for (int f = 0; f < int(T.size()); ++f) F.row(f) << T[size_t(f)][0], T[size_t(f)][1], T[size_t(f)][2];
+  }
+};
+
+const std::function<bool(const Vec3&)> near_the_line = [](const Vec3& p) { return p.y() >= 25; };
+
+TEST(RemeshFlatPatches, MeshesAFanFromAFarCornerAgainWholeWithItsOutlineKept) {
+  const Fan fan;
+  const MeshTopology mesh(fan.V, fan.F);
+  double before = INFINITY;
+  for (int f = 0; f < mesh.num_facets(); ++f) before = std::min(before, smallest_angle(mesh.corner(f, 0), mesh.corner(f, 1), mesh.corner(f, 2)));
+  ASSERT_LT(before * 180 / M_PI, 1.0);
+  MeshEdit edit(mesh);
+  const ImproveStats stats = remesh_flat_patches(edit, std::vector<char>(size_t(mesh.num_facets()), 1), [](int) { return true; }, near_the_line);
+  ASSERT_EQ(stats.patches_remeshed, 1);
+  EXPECT_EQ(edit.removed.size(), size_t(mesh.num_facets()));
+  // Every side of the outline once, in its direction; every other edge twice, once each way; the area kept.
+  std::map<std::pair<int, int>, int> directed;
+  Vec3 area = Vec3::Zero();
+  double after = INFINITY;
+  for (const auto& t : edit.added) {
+    const Vec3 a = edit.point(t[0]), b = edit.point(t[1]), c = edit.point(t[2]);
+    area += 0.5 * (b - a).cross(c - a);
+    after = std::min(after, smallest_angle(a, b, c));
+    EXPECT_TRUE(near_the_line(a) || near_the_line(b) || near_the_line(c));  // no facet wholly beyond the reach
+    EXPECT_TRUE(a.z() == 0 && b.z() == 0 && c.z() == 0);  // in the face's plane
+    for (int k = 0; k < 3; ++k) ++directed[{t[k], t[(k + 1) % 3]}];
+  }
+  auto uses = [&](int p, int q) { return directed.count(std::make_pair(p, q)) ? directed.at(std::make_pair(p, q)) : 0; };
+  const size_t n = fan.ring.size();
+  for (size_t i = 0; i < n; ++i) {
+    const int p = fan.ring[i], q = fan.ring[(i + 1) % n];
+    EXPECT_EQ(uses(p, q), 1) << p << "-" << q;
+    EXPECT_EQ(uses(q, p), 0) << p << "-" << q;
+  }
+  for (const auto& [e, count] : directed) {
+    const bool side = std::abs(e.first - e.second) == 1 || edge_key(e.first, e.second) == edge_key(0, int(n) - 1);
+    if (!side) EXPECT_EQ(count + uses(e.second, e.first), 2) << e.first << "-" << e.second;
+  }
+  EXPECT_NEAR(area.z(), 95.0 * 35.0, 1e-6);
+  EXPECT_GE(after * 180 / M_PI, 10.0);
+}
+
+TEST(RemeshFlatPatches, LeavesAPatchWithAVertexInsideThatMayNotGo) {
+  const Fan fan(true);
+  const MeshTopology mesh(fan.V, fan.F);
+  MeshEdit edit(mesh);
+  const int inner = mesh.num_vertices() - 1;
+  auto may_go = [inner](int v) { return v != inner; };
+  EXPECT_EQ(remesh_flat_patches(edit, std::vector<char>(size_t(mesh.num_facets()), 1), may_go, near_the_line).patches_remeshed, 0);
+  EXPECT_TRUE(edit.added.empty() && edit.removed.empty());
+  // The same vertex made by the call (it may go): the patch is meshed again.
+  MeshEdit again(mesh);
+  EXPECT_EQ(remesh_flat_patches(again, std::vector<char>(size_t(mesh.num_facets()), 1), [](int) { return true; }, near_the_line).patches_remeshed, 1);
+}
+
+TEST(RemeshFlatPatches, LeavesFacetsTheCallDidNotMake) {
+  const Fan fan;
+  const MeshTopology mesh(fan.V, fan.F);
+  MeshEdit edit(mesh);
+  EXPECT_EQ(remesh_flat_patches(edit, std::vector<char>(size_t(mesh.num_facets()), 0), [](int) { return true; }, near_the_line).patches_remeshed, 0);
 }
 
 }  // namespace

@@ -17,6 +17,7 @@
 #include <functional>
 #include <unordered_set>
 
+#include "meshround/mesh_delta.h"
 #include "meshround/mesh_edit.h"
 
 namespace meshround {
@@ -25,10 +26,26 @@ struct ImproveStats {
   int flips = 0;             // edges flipped
   int vertices_removed = 0;  // new vertices taken out
   int vertices_slid = 0;     // new vertices moved along their crease
+  int patches_remeshed = 0;  // flat patches meshed again whole (remesh_flat_patches)
 };
 
 // `keep`: vertices that must stay (the round's). Removed facets are dropped from edit.added.
 ImproveStats improve_new_facets(MeshEdit& edit, const std::unordered_set<int>& keep,
                                 const std::function<bool(const Vec3&)>& admit);
+
+// After a network's rounds: each chain's trim cut the facets the ones before it made, and a piece of an
+// earlier trim that spans from a far corner of a large face to the band of the next round is cut again
+// where the later round admits no point near that corner (a CAD face's fan from its far corner to both
+// trim lines). Each flat patch of the made facets (`made`: per facet of edit.input; connected across
+// edges, on one plane, its outline one simple loop) that has a facet under kThinDeg is meshed again whole,
+// as the trim meshes a cut facet: its outline kept, its inner vertices (each one that `may_go`) dropped,
+// points added inside where `admit` allows. The new facets replace the patch when their smallest angle is
+// larger and they add no edge the mesh has outside the patch.
+ImproveStats remesh_flat_patches(MeshEdit& edit, const std::vector<char>& made, const std::function<bool(int)>& may_go,
+                                 const std::function<bool(const Vec3&)>& admit);
+// The same over a call's result: `delta` is what the call made of (V, F) (its added facets the made ones, its
+// new points the vertices that may go); it becomes the result with the patches meshed again. False (delta
+// as it was) when no patch was.
+bool remesh_flat_patches(const Points& V, const Triangles& F, MeshDelta& delta, const std::function<bool(const Vec3&)>& admit);
 
 }  // namespace meshround
