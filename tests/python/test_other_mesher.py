@@ -62,8 +62,10 @@ def test_corner_cases_on_gmsh_meshes_round_like_occt(name, variant, tmp_path):
         assert row["min_angle_new_deg"] >= 10.0, row
 
 
-# The rows whose new facets are all 10 deg or more (measured 11.5-19.3 deg; gmsh's own 35 deg and more).
-ANGLES_HOLD = {"box_corner", "pyramid", "pocket_rim_square"}
+# The rows whose new facets are all 10 deg or more (measured 11.5-19.3 deg; gmsh's own 35 deg and more). The
+# square whole pocket's and the rim with its wall corners' coarse rows came down to 8.2 deg until a network's
+# flat patches were meshed again whole (improve.h remesh_flat_patches): 16.9 / 16.7 now.
+ANGLES_HOLD = {"box_corner", "pyramid", "pocket_rim_square", "pocket_all", "pocket_rim_walls"}
 
 
 @pytest.mark.parametrize("name", ["l_bracket_135", "pocket_all_draft"])
