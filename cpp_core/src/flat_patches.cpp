@@ -248,6 +248,17 @@ ImproveStats remesh_flat_patches(MeshEdit& edit, const std::vector<char>& made, 
 }
 
 bool remesh_flat_patches(const Points& V, const Triangles& F, MeshDelta& delta, const std::function<bool(const Vec3&)>& admit) {
+  // Most calls make no facet under kThinDeg: they pay for this look at the facets made, not for the whole mesh.
+  std::unordered_map<int, Vec3> moved;
+  for (size_t i = 0; i < delta.moved.size(); ++i) moved[delta.moved[i]] = delta.moved_to[i];
+  auto point = [&](int v) -> Vec3 {
+    if (v >= delta.input_vertices) return delta.new_points[size_t(v - delta.input_vertices)];
+    auto it = moved.find(v);
+    return it != moved.end() ? it->second : Vec3(V.row(v).transpose());
+  };
+  const double thin = kThinDeg * M_PI / 180;
+  if (std::none_of(delta.added.begin(), delta.added.end(), [&](const Tri& t) { return smallest_angle(point(t[0]), point(t[1]), point(t[2])) < thin; }))
+    return false;
   Points V1;
   Triangles F1;
   StepOrigin origin;
