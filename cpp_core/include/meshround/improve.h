@@ -37,10 +37,11 @@ ImproveStats improve_new_facets(MeshEdit& edit, const std::unordered_set<int>& k
 // earlier trim that spans from a far corner of a large face to the band of the next round is cut again
 // where the later round admits no point near that corner (a CAD face's fan from its far corner to both
 // trim lines). Each flat patch of the made facets (`made`: per facet of edit.input; connected across
-// edges, on one plane, its outline one simple loop) that has a facet under kThinDeg is meshed again whole,
-// as the trim meshes a cut facet: its outline kept, its inner vertices (each one that `may_go`) dropped,
-// points added inside where `admit` allows. The new facets replace the patch when their smallest angle is
-// larger and they add no edge the mesh has outside the patch.
+// edges, on one plane, its outline one simple loop, or two -- an annulus, cut in two across) that has a
+// facet under kThinDeg is meshed again whole, as the trim meshes a cut facet: its outline kept, its inner
+// vertices (each one that `may_go`) dropped, points added inside where `admit` allows. The new facets
+// replace the patch when their smallest angle is larger, no more of them are under kThinDeg, each has a
+// corner where `admit` allows, and they add no edge the mesh has outside the patch.
 ImproveStats remesh_flat_patches(MeshEdit& edit, const std::vector<char>& made, const std::function<bool(int)>& may_go,
                                  const std::function<bool(const Vec3&)>& admit);
 // The same over a call's result: `delta` is what the call made of (V, F) (its added facets the made ones, its
