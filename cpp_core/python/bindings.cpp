@@ -369,6 +369,7 @@ py::dict strip_dict(const StripReport& s) {
   d["opening_deg"] = s.opening_deg, d["convex"] = s.convex;
   d["corner"] = polyline({s.corner[0], s.corner[1]});
   d["corner_line"] = polyline(s.corner_line);
+  d["mitres"] = s.mitres;
   d["strip_facets"] = s.strip_facets, d["measured_vertices"] = s.measured_vertices;
   d["border_vertices"] = py::make_tuple(s.border_vertices[0], s.border_vertices[1]);
   d["end_faces"] = s.end_faces, d["facets_split"] = s.facets_split, d["end_facets_remeshed"] = s.end_facets_remeshed;

@@ -44,6 +44,31 @@ Vec3 onto_end(const StripFrame& strip, const StripEnd& end, const Vec3& p) {
   return p + strip.axis * ((end.offset - end.normal.dot(p)) / end.normal.dot(strip.axis));
 }
 
+// Near a mitre, a round's vertices move along its corner line as its crease does at their place on the arc.
+// A crease point slides along the line onto the plane bisecting the two walls (the rebuilt edges meet there:
+// on plane A on its diagonal, on the walls down their corner line), by up to 0.29 r at mid-arc; a vertex
+// beside it, folded at its own place along the line, would land past it (the fold keeps the place, the crease
+// moves). Each vertex within kMitreBlend r of its crease (along the line) is moved by the crease's shift at
+// its arc position, tapering to none at that distance: the order along the line is kept.
+constexpr double kMitreBlend = 1.0;
+
+Vec3 follow_crease(const RoundStrip& strip, const StripFrame& frame, const Vec3& p, const Vec3& image, double r) {
+  if (!strip.mitred || frame.piece < 0) return image;
+  const RoundStrip::Piece& piece = strip.pieces[size_t(frame.piece)];
+  const Vec3 middle = frame.corner + frame.axis * (0.5 * piece.length);
+  Vec3 out = image;
+  for (const StripEnd& plane : piece.mitres) {
+    const Vec3 crease = onto_end(frame, plane, p);             // the crease at p's place on the arc
+    const double from = frame.axis.dot(p - crease);             // p's distance from it along the line
+    if (std::abs(from) >= kMitreBlend * r) continue;
+    const double shift = frame.axis.dot(onto_end(frame, plane, image) - image) + from;  // the crease's move along the line
+    out += frame.axis * (shift * (1 - std::abs(from) / (kMitreBlend * r)));
+    // (A vertex a hair past the crease -- the mesher's crease is an approximated curve -- stays on it.)
+    if ((plane.normal.dot(out) - plane.offset) * (plane.normal.dot(middle) - plane.offset) < 0) out = onto_end(frame, plane, out);
+  }
+  return out;
+}
+
 // Moves every strip vertex (borders stay) and records its t.
 void fold_vertices(const MeshTopology& mesh, const RoundStrip& strip, const SharpenOptions& o, MeshEdit& edit, Fold& fold) {
   for (const auto& [v, role] : strip.role) {
@@ -57,6 +82,8 @@ void fold_vertices(const MeshTopology& mesh, const RoundStrip& strip, const Shar
       const StripEnd& end = strip.ends[strip.end_of.at(v)];
       if (end.face) image = onto_end(strip.frame(v), end, image);
     }
+    if (auto crease = strip.mitre_of.find(v); crease != strip.mitre_of.end()) image = onto_end(strip.frame(v), crease->second.plane, image);
+    else image = follow_crease(strip, strip.frame(v), mesh.point(v), image, strip.radius.at(v));
     fold.t[v] = t;
     fold.setback = std::max(fold.setback, (image - mesh.point(v)).norm());
     edit.moved[v] = image;
@@ -73,8 +100,19 @@ int split_point(const MeshTopology& mesh, const RoundStrip& strip, MeshEdit& edi
   const double w = (0.5 - tu) / (tv - tu);
   Vec3 q = strip.corner + strip.axis * ((1 - w) * strip.s_of(pu) + w * strip.s_of(pv));
   if (strip.curved) {  // between the two vertices' corner points (each in its own section)
-    const StripFrame &fu = strip.frame(u), &fv = strip.frame(v);
-    q = (1 - w) * (fu.corner + fu.axis * fu.s_of(pu)) + w * (fv.corner + fv.axis * fv.s_of(pv));
+    // A vertex on a mitre's crease takes the other one's round (its point is on both); two on one crease
+    // meet the corner line at the mitre's corner; two on the two creases of one round (a CAD mesh's facet
+    // the round's length) take that round.
+    const auto cu = strip.mitre_of.find(u), cv = strip.mitre_of.find(v);
+    const bool on_u = cu != strip.mitre_of.end(), on_v = cv != strip.mitre_of.end();
+    const StripFrame* fu = &strip.frame(on_u && !on_v ? v : u);
+    const StripFrame* fv = &strip.frame(on_v && !on_u ? u : v);
+    const bool one_crease = on_u && on_v && cu->second.pieces[0] == cv->second.pieces[0] && cu->second.pieces[1] == cv->second.pieces[1];
+    if (on_u && on_v && !one_crease)
+      for (int p : cu->second.pieces)
+        if (p == cv->second.pieces[0] || p == cv->second.pieces[1]) fu = fv = &strip.pieces[size_t(p)].frame;
+    q = (1 - w) * strip.foot(*fu, pu) + w * strip.foot(*fv, pv);
+    if (one_crease) q = onto_end(*fu, cu->second.plane, q);
   }
   auto eu = strip.end_of.find(u), ev = strip.end_of.find(v);
   if (eu != strip.end_of.end() && ev != strip.end_of.end() && eu->second == ev->second && strip.ends[eu->second].face)
@@ -90,9 +128,16 @@ void add_pieces(MeshEdit& edit, const std::vector<int>& poly) {
     edit.added.push_back({poly[0], poly[1], poly[2]});
     return;
   }
-  auto p = [&](int i) { return edit.point(poly[i]); };
-  const double d02 = std::min(smallest_angle(p(0), p(1), p(2)), smallest_angle(p(0), p(2), p(3)));
-  const double d13 = std::min(smallest_angle(p(1), p(2), p(3)), smallest_angle(p(1), p(3), p(0)));
+  auto p = [&](int i) { return edit.point(poly[size_t(i % 4)]); };
+  double d02 = std::min(smallest_angle(p(0), p(1), p(2)), smallest_angle(p(0), p(2), p(3)));
+  double d13 = std::min(smallest_angle(p(1), p(2), p(3)), smallest_angle(p(1), p(3), p(0)));
+  // A split whose halves overlap (their areas add up to more than the quad's: near a mitre's corner a corner
+  // of the quad can lie on its opposite side, a crease's image on the diagonal) is not one: the other, whose
+  // flat half drop_flat_facets resolves.
+  auto area = [&](int a, int b, int c) { return 0.5 * (p(b) - p(a)).cross(p(c) - p(a)).norm(); };
+  const double quad = 0.25 * ((p(2) - p(0)).cross(p(3) - p(1))).norm() * 2;
+  if (area(0, 1, 2) + area(0, 2, 3) > quad * (1 + 1e-9) + 1e-300) d02 = -1;
+  if (area(1, 2, 3) + area(1, 3, 0) > quad * (1 + 1e-9) + 1e-300) d13 = -1;
   if (d02 >= d13) edit.added.push_back({poly[0], poly[1], poly[2]}), edit.added.push_back({poly[0], poly[2], poly[3]});
   else edit.added.push_back({poly[1], poly[2], poly[3]}), edit.added.push_back({poly[1], poly[3], poly[0]});
 }
@@ -224,7 +269,61 @@ int remesh_end(const MeshTopology& mesh, const RoundStrip& round, int e, double 
 // merged into it (the facets between the two go).
 constexpr double kMergeShare = 0.25;
 
-int merge_close_points(const MeshTopology& mesh, const RoundStrip& strip, MeshEdit& edit, const Fold& fold) {
+// Replaces each vertex of `into` in the new facets and in the strip's facets kept whole (with a crease's
+// vertex merged into a mitre's corner); facets left with a repeated corner go.
+void renumber(const MeshTopology& mesh, const RoundStrip& strip, const std::unordered_map<int, int>& into, MeshEdit& edit) {
+  auto mapped = [&](std::array<int, 3> f) {
+    for (int& v : f)
+      if (auto it = into.find(v); it != into.end()) v = it->second;
+    return f;
+  };
+  std::vector<std::array<int, 3>> kept;
+  for (const auto& f : edit.added) kept.push_back(mapped(f));
+  for (int f : strip.facets) {
+    const std::array<int, 3> whole{mesh.F(f, 0), mesh.F(f, 1), mesh.F(f, 2)};
+    if (edit.removed.count(f) || mapped(whole) == whole) continue;
+    edit.removed.insert(f);
+    kept.push_back(mapped(whole));
+  }
+  edit.added.clear();
+  for (const auto& f : kept)
+    if (f[0] != f[1] && f[1] != f[2] && f[2] != f[0]) edit.added.push_back(f);
+}
+
+// A vertex of a mitre's crease that folds within this share of r of the mitre's corner goes onto it (the
+// crease's vertex at mid-arc of a CAD mesh lands 0.006 mm from it on a 2 mm round, as t's snap does on a
+// straight round).
+constexpr double kCornerSnapShare = 0.01;
+// A point on the rebuilt edge within this share of r of a mitre's corner goes onto it (a split point 0.02 mm
+// from it on a 2 mm rim: the chain round_edges traces there would end in a stub).
+constexpr double kCornerJoinShare = 0.05;
+
+// A mitred strip's corners (where two rebuilt edges meet): the points there -- a crease's split, points whose
+// foot the corner stopped, a crease's vertex folded a hair from it -- become one, exactly there (into `into`);
+// returns them all (none is merged along the line after: that would cut the corner).
+std::unordered_set<int> join_at_mitre_corners(const RoundStrip& strip, const std::vector<std::pair<double, int>>& line, int n_in, double r,
+                                              MeshEdit& edit, std::unordered_map<int, int>& into) {
+  std::unordered_set<int> cornered;
+  for (size_t i = strip.closed ? 0 : 1; strip.mitred && i < strip.pieces.size(); ++i) {
+    const Vec3 c = strip.pieces[i].frame.corner;
+    std::vector<int> here;
+    for (const auto& [s, q] : line)
+      if ((edit.point(q) - c).norm() <= kCornerJoinShare * r) here.push_back(q);
+    for (const auto& [v, crease] : strip.mitre_of)
+      if ((edit.point(v) - c).norm() <= kCornerSnapShare * r) here.push_back(v);
+    if (here.empty()) continue;
+    const int keep = *std::min_element(here.begin(), here.end());  // an input vertex, if any is there
+    if (keep < n_in) edit.moved[keep] = c;
+    else edit.new_points[size_t(keep - n_in)] = c;
+    for (int q : here) {
+      cornered.insert(q);
+      if (q != keep) into[q] = keep;
+    }
+  }
+  return cornered;
+}
+
+int merge_close_points(const MeshTopology& mesh, const RoundStrip& strip, double r, MeshEdit& edit, const Fold& fold) {
   std::vector<std::pair<double, int>> line;  // (s, vertex) of every vertex on the corner line
   for (const auto& [key, q] : fold.split) (void)key, line.push_back({strip.param(edit.point(q)), q});
   for (const auto& [v, t] : fold.t)
@@ -238,24 +337,71 @@ int merge_close_points(const MeshTopology& mesh, const RoundStrip& strip, MeshEd
   const double close = kMergeShare * sorted[sorted.size() / 2];
   const int n_in = mesh.num_vertices();
   std::unordered_map<int, int> into;
+  const std::unordered_set<int> cornered = join_at_mitre_corners(strip, line, n_in, r, edit, into);
   for (size_t i = 0; i < gaps.size(); ++i) {
     if (gaps[i] >= close) continue;
     const int a = line[i].second, b = line[i + 1].second;
-    if (into.count(a) || into.count(b)) continue;
+    if (into.count(a) || into.count(b) || cornered.count(a) || cornered.count(b)) continue;
     if (b >= n_in && i + 2 < line.size()) into[b] = a;       // the later one, unless it ends the edge
     else if (a >= n_in && i > 0) into[a] = b;                // the earlier one, unless it starts the edge
   }
   if (into.empty()) return 0;
-  std::vector<std::array<int, 3>> kept;
-  for (auto f : edit.added) {
-    for (int& v : f) {
-      auto it = into.find(v);
-      if (it != into.end()) v = it->second;
-    }
-    if (f[0] != f[1] && f[1] != f[2] && f[2] != f[0]) kept.push_back(f);
-  }
-  edit.added.swap(kept);
+  renumber(mesh, strip, into, edit);
   return int(into.size());
+}
+
+// Around a mitre's corner a fold can leave a facet of no area, its three corners on one line: a mesher's
+// sliver lying in the crease (its corners on it, or at its end on the walls' corner line, where the two
+// rounds meet nearly tangent), or a CAD mesh's facet the round's length whose corners at both creases fold
+// onto the two corners and whose third is a split point between them. It goes, and the facet across its
+// longest side is split at its middle corner, which lies on that side now.
+int drop_flat_facets(const MeshTopology& mesh, const RoundStrip& strip, MeshEdit& edit) {
+  auto flat = [&](const std::array<int, 3>& t, int* m) {  // *m: the corner opposite the longest side
+    const Vec3 p[3] = {edit.point(t[0]), edit.point(t[1]), edit.point(t[2])};
+    double longest = 0;
+    for (int k = 0; k < 3; ++k)
+      if ((p[(k + 1) % 3] - p[(k + 2) % 3]).norm() > longest) longest = (p[(k + 1) % 3] - p[(k + 2) % 3]).norm(), *m = k;
+    return (p[1] - p[0]).cross(p[2] - p[0]).norm() <= 1e-12 * longest * longest;
+  };
+  auto split_across = [&](int a, int b, int mid, const std::array<int, 3>& t) {  // t has side (a, b): its two halves
+    for (int k = 0; k < 3; ++k)
+      if ((t[k] == a && t[(k + 1) % 3] == b) || (t[k] == b && t[(k + 1) % 3] == a)) {
+        std::array<int, 3> one = t, two = t;
+        one[(k + 1) % 3] = mid, two[k] = mid;
+        edit.added.push_back(one), edit.added.push_back(two);
+        return;
+      }
+  };
+  int dropped = 0;
+  for (bool again = true; again && dropped < int(strip.facets.size());) {
+    again = false;
+    std::array<int, 3> t{};
+    int m = 0;
+    for (size_t i = 0; i < edit.added.size() && !again; ++i)
+      if (flat(edit.added[i], &m)) t = edit.added[i], edit.added.erase(edit.added.begin() + long(i)), again = true;
+    for (size_t i = 0; i < strip.facets.size() && !again; ++i) {
+      const int f = strip.facets[i];
+      const std::array<int, 3> whole{mesh.F(f, 0), mesh.F(f, 1), mesh.F(f, 2)};
+      if (!edit.removed.count(f) && flat(whole, &m)) t = whole, edit.removed.insert(f), again = true;
+    }
+    if (!again) break;
+    ++dropped;
+    const int a = t[(m + 1) % 3], b = t[(m + 2) % 3], mid = t[m];
+    bool done = false;
+    for (size_t i = 0; i < edit.added.size() && !done; ++i) {
+      const std::array<int, 3> u = edit.added[i];
+      if (std::count(u.begin(), u.end(), a) && std::count(u.begin(), u.end(), b)) {
+        edit.added.erase(edit.added.begin() + long(i));
+        split_across(a, b, mid, u), done = true;
+      }
+    }
+    for (int g : (a < mesh.num_vertices() && b < mesh.num_vertices()) ? mesh.edge_facets(a, b) : std::vector<int>{})
+      if (!done && !edit.removed.count(g)) {
+        edit.removed.insert(g);
+        split_across(a, b, mid, {mesh.F(g, 0), mesh.F(g, 1), mesh.F(g, 2)}), done = true;
+      }
+  }
+  return dropped;
 }
 
 // The corner line as a chain, for the output check's reach (guard.h).
@@ -309,8 +455,11 @@ StripReport sharpen_one(const MeshTopology& mesh, const Vec3& seed, const Sharpe
   rep.facets_split = split_facets(mesh, strip, edit, fold);
   for (int e = 0; e < 2; ++e)
     if (strip.ends[e].face) ++rep.end_faces, rep.end_facets_remeshed += remesh_end(mesh, strip, e, rep.found_radius, o.flat_deg, edit, fold);
-  rep.points_merged = merge_close_points(mesh, strip, edit, fold);
+  rep.points_merged = merge_close_points(mesh, strip, rep.found_radius, edit, fold);
+  if (strip.mitred) drop_flat_facets(mesh, strip, edit);
   const SharpChain chain = corner_chain(strip);
+  if (getenv("MR_DUMP")) { Points V2; Triangles F2; write_mesh(edit, V2, F2, nullptr); FILE* fo = fopen(getenv("MR_DUMP"), "w"); for (int i = 0; i < V2.rows(); ++i) fprintf(fo, "v %.9g %.9g %.9g\n", V2(i,0), V2(i,1), V2(i,2)); for (int i = 0; i < F2.rows(); ++i) fprintf(fo, "f %d %d %d\n", F2(i,0)+1, F2(i,1)+1, F2(i,2)+1); fclose(fo);
+    for (const auto& [v, t] : fold.t) { const Vec3 x = mesh.point(v); fprintf(stderr, "V %d (%g %g %g) t %g role %d crease %d piece %d -> %g %g %g\n", v, x.x(), x.y(), x.z(), t, int(strip.role.at(v)), int(strip.mitre_of.count(v)), strip.frame(v).piece, edit.point(v).x(), edit.point(v).y(), edit.point(v).z()); } }
   check_result(edit, chain, changed_reach(edit, chain) * 1.001 + 1e-9, fold.setback);
   write_mesh(edit, V_out, F_out, origin);
   rep.opening_deg = std::acos(std::clamp(strip.normal[0].dot(strip.normal[1]), -1.0, 1.0)) * 180 / M_PI;
@@ -319,6 +468,7 @@ StripReport sharpen_one(const MeshTopology& mesh, const Vec3& seed, const Sharpe
     if (strip.ends[e].face) rep.convex = !concave_at(mesh, strip, strip.ends[e], rep.found_radius);
   rep.corner[0] = chain.points.front(), rep.corner[1] = chain.points.back();
   rep.corner_line = chain.points;
+  if (strip.mitred) rep.mitres = int(strip.pieces.size()) - (strip.closed ? 0 : 1);
   rep.strip_facets = int(strip.facets.size());
   rep.border_vertices[0] = strip.border_count[0], rep.border_vertices[1] = strip.border_count[1];
   rep.recognised = strip.recognised;
@@ -403,8 +553,14 @@ ChangeRadiusResult change_radius(const Points& V, const Triangles& F, const std:
     return out;
   }
   std::vector<Vec3> corner_seeds;
-  for (const StripReport& s : sharp.strips)
+  for (const StripReport& s : sharp.strips) {
+    if (s.mitres > 0) {  // a seed on each round's sharp edge (round_edges mitres them again)
+      const size_t n = s.corner_line.size(), segments = n - (s.mitres == int(n) ? 0 : 1);
+      for (size_t i = 0; i < segments; ++i) corner_seeds.push_back(0.5 * (s.corner_line[i] + s.corner_line[(i + 1) % n]));
+      continue;
+    }
     corner_seeds.push_back(s.corner_line.size() > 2 ? s.corner_line[s.corner_line.size() / 2] : Vec3(0.5 * (s.corner[0] + s.corner[1])));
+  }
   RoundOptions again = round;
   again.write_arrays = false;  // made below, with where each vertex and facet comes from
   out.round = round_edges(sharp.vertices, sharp.triangles, corner_seeds, again);

@@ -286,12 +286,19 @@ RoundStrip recognise_strip(const MeshTopology& mesh, const Vec3& seed, const Sha
   std::vector<int> curved, beside;
   flood_curved(fx, f0, o.max_new_facets, curved, beside);
   RoundStrip strip;
-  bool turns = false, curved_side = false;
-  const Vec3 axis0 = turning_axis(fx, curved, seed, o, &turns);
-  if (!turns) side_normals(fx, beside, fx.normal(f0), axis0, o, seed, strip, &curved_side);
+  bool turns = false, curved_side = false, mitred = false;
   std::vector<std::pair<int, int>> end_edges;
-  if (turns || curved_side) {
-    recognise_curved(mesh, fx, f0, curved, beside, o, seed, strip, end_edges);
+  Vec3 axis0 = Vec3::Zero();
+  try {
+    axis0 = turning_axis(fx, curved, seed, o, &turns);
+  } catch (const RoundingError&) {  // (a CAD mesh of mitred rounds: too few facets to see one turning locally)
+    if (!(mitred = recognise_mitred(mesh, fx, f0, curved, beside, o, seed, strip, end_edges))) throw;
+  }
+  if (!mitred && !turns) side_normals(fx, beside, fx.normal(f0), axis0, o, seed, strip, &curved_side);
+  if (mitred) {
+  } else if (turns || curved_side) {
+    if (!recognise_mitred(mesh, fx, f0, curved, beside, o, seed, strip, end_edges))
+      recognise_curved(mesh, fx, f0, curved, beside, o, seed, strip, end_edges);
   } else {
     strip.axis = strip.normal[0].cross(strip.normal[1]);
     if (strip.axis.norm() < 1e-6) not_a_round("its two sides are parallel (no sharp edge to rebuild)", seed);
@@ -323,7 +330,12 @@ RoundStrip recognise_strip(const MeshTopology& mesh, const Vec3& seed, const Sha
     strip.radius[v] = r;
   }
   if (strip.radius.empty()) not_a_round("it has no vertex between its borders (one element across: the radius is not defined)", seed);
-  if (strip.curved)
+  if (strip.mitred)
+    strip.recognised = "curved facets flooded from the seed (" + std::to_string(curved.size()) + "), flanked by one flat side and " +
+                       std::to_string(strip.pieces.size()) + " flat walls meeting at sharp edges; strip = " + std::to_string(strip.facets.size()) +
+                       " facets of " + std::to_string(strip.pieces.size()) + " rounds " + (strip.closed ? "all around a loop, " : "") +
+                       "mitred into each other on the planes bisecting their walls (" + std::to_string(strip.mitre_of.size()) + " crease vertices)";
+  else if (strip.curved)
     strip.recognised = "curved facets flooded from the seed (" + std::to_string(curved.size()) + "), flanked by a flat side and a side "
                        "curved along the round (" + format_number(angle_deg(strip.normal[0], strip.normal[1])) + " deg apart); strip = " +
                        std::to_string(strip.facets.size()) + " facets turning about the corner line between them, " +
@@ -419,6 +431,18 @@ void measure_law(const MeshTopology& mesh, const RoundStrip& strip, const Sharpe
 
 double RoundStrip::param(const Vec3& p) const {
   if (!curved) return s_of(p);
+  if (mitred) {  // along the nearest piece (an open strip's first and last run on past their ends)
+    double best = INFINITY, s = 0;
+    for (size_t i = 0; i < pieces.size(); ++i) {
+      const Piece& piece = pieces[i];
+      double along = piece.frame.s_of(p);
+      if (closed || i > 0) along = std::max(along, 0.0);
+      if (closed || i + 1 < pieces.size()) along = std::min(along, piece.length);
+      const double off = (piece.frame.corner + along * piece.frame.axis - p).squaredNorm();
+      if (off < best) best = off, s = piece.s0 + along;
+    }
+    return closed ? s - loop_length * std::floor(s / loop_length) : s;
+  }
   size_t best = 0;
   for (size_t i = 1; i < line.size(); ++i)
     if ((line[i] - p).squaredNorm() < (line[best] - p).squaredNorm()) best = i;

@@ -17,6 +17,8 @@
 //     normal to the corner line, passes through the vertex (a quadratic; the root with the vertex between
 //     the two contacts).
 #pragma once
+#include <algorithm>
+#include <cmath>
 #include <string>
 #include <unordered_map>
 #include <unordered_set>
@@ -44,6 +46,7 @@ struct StripFrame {
   double side[2] = {0, 0};                  // +-1: the side of each plane the round (and its ball) lies on
   Vec3 axis, corner;                        // the corner line: corner + s axis
   Vec3 centre_dir;                          // the ball's centre in a section: its corner point + r centre_dir
+  int piece = -1;                           // a mitred strip's: its round (RoundStrip::pieces)
 
   double s_of(const Vec3& p) const { return axis.dot(p - corner); }
   // p's component normal to the corner line, relative to it (a point of p's section).
@@ -71,6 +74,30 @@ struct RoundStrip : StripFrame {
   StripFrame end_frame[2];                     // curved: the frame at each end
   bool closed = false;                         // curved: all around a loop (no end); the line closes on itself
   double loop_length = 0;                      // closed: the line's length, the closing segment included
+
+  // Mitred (strip_mitre.cpp): rounds on one plane A and each on its own plane B, run into each other at
+  // creases on the planes bisecting two walls. Each is a straight piece of the corner line; the stations
+  // are the pieces' starts (a mitre's corner), `line` the polygon through them.
+  bool mitred = false;
+  struct Piece {
+    StripFrame frame;  // its corner at the piece's start
+    double s0 = 0, length = 0;
+    std::vector<StripEnd> mitres;  // the planes bisecting its wall and the next one's, at its mitred ends
+    double lo = -INFINITY, hi = INFINITY;  // where its rebuilt edge may run, along its axis from its start (to a mitre's corner)
+  };
+  // A point's foot on its round's corner line: the rebuilt edge's point in its section (a mitred strip's kept
+  // between its mitres' corners: a crease point's foot is the corner).
+  Vec3 foot(const StripFrame& f, const Vec3& p) const {
+    double s = f.s_of(p);
+    if (mitred && f.piece >= 0) s = std::clamp(s, pieces[size_t(f.piece)].lo, pieces[size_t(f.piece)].hi);
+    return f.corner + f.axis * s;
+  }
+  std::vector<Piece> pieces;
+  struct Crease {
+    StripEnd plane;               // the plane bisecting the two walls, which its vertices slide onto
+    int pieces[2] = {-1, -1};     // the two rounds it joins
+  };
+  std::unordered_map<int, Crease> mitre_of;  // a vertex on a crease
 
   const StripFrame& frame(int v) const { return curved ? frames.at(v) : *this; }
   // Position along the corner line (its arc length for a curved strip: that of the nearest station; in

@@ -101,4 +101,12 @@ void flood_from(const MeshTopology& mesh, Facets& fx, int f0, const SharpenOptio
 void recognise_curved(const MeshTopology& mesh, Facets& fx, int f0, const std::vector<int>& flood, const std::vector<int>& beside,
                       const SharpenOptions& o, const Vec3& where, RoundStrip& strip, std::vector<std::pair<int, int>>& end_edges);
 
+// A strip of straight rounds mitred into each other where their walls meet at sharp edges (a pocket's rim
+// whose wall corners stayed sharp; strip_mitre.cpp): true and `strip` made (curved, its stations the
+// mitres' corners) when the flat facets beside the flood are one plane A along all of it and one plane B
+// per round, every facet turns about its round's corner line and the rounds join end to end; false (strip
+// untouched) otherwise.
+bool recognise_mitred(const MeshTopology& mesh, Facets& fx, int f0, const std::vector<int>& flood, const std::vector<int>& beside,
+                      const SharpenOptions& o, const Vec3& where, RoundStrip& strip, std::vector<std::pair<int, int>>& end_edges);
+
 }  // namespace meshround::strip_detail

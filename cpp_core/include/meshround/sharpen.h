@@ -10,7 +10,9 @@
 //
 // Scope: the sides flat where they meet the strip (a plane each: the corner line is straight), or one side
 // flat and the other curved along the round, meeting it at one angle (a wall curved in plan, vertical or
-// drafted: the sharp edge rebuilt section by section, its corner line a polyline); the radius may vary
+// drafted: the sharp edge rebuilt section by section, its corner line a polyline), or straight rounds
+// mitred into each other where their walls meet at sharp edges (a pocket's rim whose wall corners stayed
+// sharp: one sharp edge rebuilt per round, meeting at the rim's corners); the radius may vary
 // along the strip (the measured law is reported). Other strips are refused with not_a_round, naming the
 // place and the reason.
 #pragma once
@@ -49,7 +51,10 @@ struct StripReport {
   double opening_deg = 0;              // angle the round turns through (between the sides' normals)
   bool convex = true;                  // the round cuts material off (false: it fills a concave corner)
   Vec3 corner[2];                      // the rebuilt sharp edge's end points
-  std::vector<Vec3> corner_line;       // the rebuilt sharp edge (its two ends; a curved one: a point per station)
+  std::vector<Vec3> corner_line;       // the rebuilt sharp edge (its two ends; a curved one: a point per station;
+                                       // a mitred one: its ends and corners)
+  int mitres = 0;                      // corners where the strip's rounds ran into each other (mitred, their walls
+                                       // meeting at a sharp edge): the rebuilt edge is one sharp edge per round
   int strip_facets = 0, measured_vertices = 0, border_vertices[2] = {0, 0};
   int end_faces = 0, facets_split = 0, end_facets_remeshed = 0;
   int points_merged = 0;               // points on the rebuilt edge merged into a too-close neighbour
