@@ -477,9 +477,10 @@ def test_a_rim_around_rounded_wall_corners_made_larger_on_a_coarse_mesh_is_refus
     assert mesh.Topology == before
 
 
-# A rectangular pocket's rim whose wall corners stayed sharp (cases.pocket_rim_square, square and drafted 10 deg):
-# OCCT's fillet of the rim at r0 = 2 mitres its four rounds into each other on the planes bisecting the walls.
-MITRED_R0 = 2.0
+# Rounds mitred into each other where their walls meet at a sharp edge, filleted by OCCT at r0 (cases.py): a
+# rectangular pocket's rim whose wall corners stayed sharp (2 mm, square and drafted 10 deg: four rounds all
+# around, four mitres) and a box's two top edges at a corner whose vertical edge stayed sharp (5 mm: one mitre).
+MITRES = {"pocket_rim_square": 4, "pocket_rim_draft": 4, "box_top_corner": 1}
 
 
 @functools.lru_cache(maxsize=None)
@@ -487,7 +488,7 @@ def mitred_mesh(name, variant):
     case = cases.case(name)
     if variant == "cad":
         return MeshPart.meshFromShape(Shape=case.reference, **CAD_MESH)
-    return MeshPart.meshFromShape(Shape=case.reference, MaxLength=MAX_LENGTH[variant] * MITRED_R0)
+    return MeshPart.meshFromShape(Shape=case.reference, MaxLength=MAX_LENGTH[variant] * case.r_max)
 
 
 @functools.lru_cache(maxsize=None)
@@ -496,48 +497,55 @@ def mitred_case_at(name, r):
 
 
 @pytest.mark.parametrize("name,variant", [("pocket_rim_square", "fine"), ("pocket_rim_square", "coarse"), ("pocket_rim_square", "cad"),
-                                          ("pocket_rim_draft", "fine"), ("pocket_rim_draft", "coarse")])
-def test_a_mitred_rim_is_found_and_sharpened(name, variant):
-    """The four rounds are one strip, recognised as rounds mitred into each other (one seed on one of them): the
-    radius found within 1 % / 5 %, the rim's four sharp edges rebuilt -- every vertex near them on the sharp
-    block's faces (1e-4 r0), the block's volume, watertight, no crossing; one seed per edge for the round again."""
+                                          ("pocket_rim_draft", "fine"), ("pocket_rim_draft", "coarse"), ("box_top_corner", "coarse")])
+def test_mitred_rounds_are_found_and_sharpened(name, variant):
+    """The rounds are one strip, recognised as rounds mitred into each other (one seed on one of them): the
+    radius found within 1 % / 5 %, their sharp edges rebuilt meeting at the corners -- every vertex near them on
+    the sharp solid's faces (1e-4 r0), its volume, watertight, no crossing; one seed per edge for the round again."""
     old, mesh = cases.case(name), mitred_mesh(name, variant)
+    r0 = old.r_max
     res = MeshRound.change_radius(mesh, [seed_on_round(old)], 0)
     strip = res.report["strips"][0]
-    assert len(res.report["strips"]) == 1 and strip["mitres"] == 4 and len(strip["corner_line"]) == 4, strip
-    assert abs(res.report["found_radius"][0] - MITRED_R0) <= FOUND_WITHIN[variant] * MITRED_R0, strip
+    mitres = MITRES[name]
+    assert len(res.report["strips"]) == 1 and strip["mitres"] == mitres, strip
+    assert len(strip["corner_line"]) == (mitres if mitres == 4 else mitres + 2), strip  # a loop's corners; an open one's ends too
+    assert abs(res.report["found_radius"][0] - r0) <= FOUND_WITHIN[variant] * r0, strip
     assert strip["constant"] and "mitred" in strip["recognised"]
-    assert_sharp_edge_rebuilt(old, res.mesh, MITRED_R0)
+    assert_sharp_edge_rebuilt(old, res.mesh, r0)
 
 
 @pytest.mark.parametrize("name,variant,r1", [("pocket_rim_square", "fine", 1.5), ("pocket_rim_square", "coarse", 3.0),
                                              ("pocket_rim_square", "cad", 3.0), ("pocket_rim_square", "cad", 1.5),
                                              ("pocket_rim_draft", "fine", 3.0), ("pocket_rim_draft", "coarse", 3.0),
-                                             ("pocket_rim_draft", "coarse", 1.5)])
-def test_a_mitred_rim_made_larger_and_smaller_against_occt(name, variant, r1):
-    """The 2 mm rim made 3 and 1.5 mm: round_edges mitres the four rebuilt edges again; against OCCT's fillet of
-    the sharp block's rim at r1 both ways (measured 0.0067 / 0.0048 r square, 0.0066 / 0.0050 r drafted), sound
-    and local."""
+                                             ("pocket_rim_draft", "coarse", 1.5), ("box_top_corner", "coarse", 8.0),
+                                             ("box_top_corner", "coarse", 3.0)])
+def test_mitred_rounds_made_larger_and_smaller_against_occt(name, variant, r1):
+    """The rims' 2 mm made 3 and 1.5 mm, the box's 5 mm made 8 and 3 mm: round_edges mitres the rebuilt edges
+    again; against OCCT's fillet of the sharp solid at r1 both ways (measured 0.0067 / 0.0048 r on the square rim,
+    0.0066 / 0.0050 r on the drafted one, 0.0048 / 0.0048 r on the box), sound and local."""
     mesh = mitred_mesh(name, variant)
     before = mesh.Topology
     res = MeshRound.change_radius(mesh, [seed_on_round(cases.case(name))], r1)
     assert mesh.Topology == before
-    assert res.report["strips"][0]["mitres"] == 4
+    assert res.report["strips"][0]["mitres"] == MITRES[name]
     row = reference.score(mitred_case_at(name, r1), mesh, res.mesh, res.report)
     assert row["dev_out_to_ref"] <= DEVIATION and row["dev_ref_to_out"] <= DEVIATION, row
     assert_sound_and_local(row)
 
 
-@pytest.mark.parametrize("variant,r1,code,why", [("fine", 1.5, "result_invalid", "a new boundary edge"),
-                                                 ("cad", 3.0, "not_a_round", "its corner line turns by 90 deg")])
-def test_drafted_mitred_rims_not_done_yet_are_refused_naming_the_cause(variant, r1, code, why):
-    """Two drafted rims are refused, the input untouched: made smaller on the fine mesh, the round's trim at a
-    mitre leaves a gap against the rebuilt edges' facets, which lie in the mitre's plane (the output check's
-    refusal); the CAD mesh's strip (facets the rim's length, the walls' rows leaning) is not told as mitred."""
-    mesh = mitred_mesh("pocket_rim_draft", variant)
+@pytest.mark.parametrize("name,variant,r1,code,why", [
+    ("pocket_rim_draft", "fine", 1.5, "result_invalid", "a new boundary edge"),
+    ("pocket_rim_draft", "cad", 3.0, "not_a_round", "its corner line turns by 90 deg"),
+    ("box_top_corner", "fine", 8.0, "result_invalid", "a new boundary edge"),
+    ("box_top_corner", "cad", 3.0, "not_a_round", "it ends on a face that is not flat")])
+def test_mitred_rounds_not_done_yet_are_refused_naming_the_cause(name, variant, r1, code, why):
+    """Refused, the input untouched: made smaller (the drafted rim) or larger (the box) on the fine mesh, the new
+    round's trim at a mitre leaves a gap against the rebuilt edges' facets, which lie in the mitre's plane (the
+    output check's refusal); on the CAD meshes (facets the edge's length) the strip is not told as mitred."""
+    mesh = mitred_mesh(name, variant)
     before = mesh.Topology
     with pytest.raises(MeshRound.RoundingError) as err:
-        MeshRound.change_radius(mesh, [seed_on_round(cases.case("pocket_rim_draft"))], r1)
+        MeshRound.change_radius(mesh, [seed_on_round(cases.case(name))], r1)
     assert err.value.code == code and why in str(err.value), str(err.value)
     assert mesh.Topology == before
 
