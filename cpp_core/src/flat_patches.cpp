@@ -28,10 +28,6 @@ struct FlatPiece {
   int thin = 0;             // facets under kThinDeg
 };
 
-bool on_plane(const Vec3& x, const Vec3& origin, const Vec3& unit_normal) {
-  return std::abs((x - origin).dot(unit_normal)) <= on_plane_slack((x - origin).norm(), x.cwiseAbs().maxCoeff());
-}
-
 // The made facets connected to `seed` across edges that lie on its plane and face its way; each gets `id`
 // in piece_of.
 FlatPiece grow_piece(const MeshTopology& mesh, const std::vector<char>& made, int seed, std::vector<int>& piece_of, int id) {

@@ -71,9 +71,6 @@ struct Patch {
 
   double angle(const Tri& t) const { return smallest_angle(p(t[0]), p(t[1]), p(t[2])); }
   Vec3 normal(const Tri& t) const { return (p(t[1]) - p(t[0])).cross(p(t[2]) - p(t[0])); }
-  bool on_plane(const Vec3& x, const Vec3& origin, const Vec3& unit_normal) const {
-    return std::abs((x - origin).dot(unit_normal)) <= on_plane_slack((x - origin).norm(), x.cwiseAbs().maxCoeff());
-  }
   bool admitted(const Tri& t) const { return admit(p(t[0])) || admit(p(t[1])) || admit(p(t[2])); }
 };
 
@@ -90,7 +87,7 @@ bool try_flip(Patch& m, int t, int u, int a, int b, std::vector<int>& touched) {
   const Vec3 n = m.normal(m.tris[t]);
   if (n.norm() == 0 || n.dot(m.normal(m.tris[u])) <= 0) return false;
   const Vec3 unit = n.normalized();
-  if (!m.on_plane(m.p(d), m.p(a), unit)) return false;
+  if (!on_plane(m.p(d), m.p(a), unit)) return false;
   const Tri t2{c, a, d}, u2{d, b, c};
   if (m.normal(t2).dot(unit) <= 0 || m.normal(u2).dot(unit) <= 0) return false;  // the quad is not convex
   if (std::min(m.angle(t2), m.angle(u2)) <= std::min(m.angle(m.tris[t]), m.angle(m.tris[u])) + 1e-9) return false;
@@ -167,14 +164,14 @@ FlatSides flat_sides(const Patch& m, int v) {
     const Vec3 nb = m.normal(m.tris[ring_tris[(i + n - 1) % n]]), na = m.normal(m.tris[ring_tris[i]]);
     if (nb.norm() == 0 || na.norm() == 0) return {};
     const Vec3 far = m.p(ring[(i + 1) % n]);
-    if (nb.dot(na) <= 0 || !m.on_plane(far, pv, nb.normalized())) creases.push_back(i);
+    if (nb.dot(na) <= 0 || !on_plane(far, pv, nb.normalized())) creases.push_back(i);
   }
   FlatSides out{star, {}};
   if (creases.empty()) {
     Vec3 normal = Vec3::Zero();
     for (int t : ring_tris) normal += m.normal(m.tris[t]);
     for (int w : ring)  // flat as a whole, not just facet to facet
-      if (!m.on_plane(m.p(w), pv, normal.normalized())) return {};
+      if (!on_plane(m.p(w), pv, normal.normalized())) return {};
     out.holes.push_back({ring, normal});
     return out;
   }
@@ -193,7 +190,7 @@ FlatSides flat_sides(const Patch& m, int v) {
     }
     const Vec3 unit = normal.normalized();  // flat as a whole, not just facet to facet
     for (int w : outline)
-      if (!m.on_plane(m.p(w), pv, unit)) return {};
+      if (!on_plane(m.p(w), pv, unit)) return {};
     out.holes.push_back({outline, normal});
   }
   return out;

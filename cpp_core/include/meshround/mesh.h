@@ -3,6 +3,7 @@
 // across the shared edge.
 #pragma once
 #include <array>
+#include <cmath>
 #include <memory>
 #include <cstdint>
 #include <unordered_map>
@@ -78,6 +79,10 @@ double smallest_angle(const Vec3& a, const Vec3& b, const Vec3& c);
 // How far off a plane (or a line) a point may lie and still count as on it: a hair of the distances
 // involved, plus what float32 coordinates (STL, Mesh.Mesh) of this magnitude can hold.
 inline double on_plane_slack(double span, double magnitude) { return 1e-9 * span + 1e-6 * magnitude; }
+// x lies on the plane through `origin` with unit normal `unit_normal`, within on_plane_slack.
+inline bool on_plane(const Vec3& x, const Vec3& origin, const Vec3& unit_normal) {
+  return std::abs((x - origin).dot(unit_normal)) <= on_plane_slack((x - origin).norm(), x.cwiseAbs().maxCoeff());
+}
 
 // The private search index of facets and chain segments (cpp_core/src/box_tree.h).
 class BoxTree;
