@@ -25,6 +25,7 @@ import cases
 import reference
 import soundness
 import FreeCAD
+import Mesh
 import MeshPart
 import Part
 import MeshRound
@@ -531,6 +532,17 @@ def test_mitred_rounds_made_larger_and_smaller_against_occt(name, variant, r1):
     row = reference.score(mitred_case_at(name, r1), mesh, res.mesh, res.report)
     assert row["dev_out_to_ref"] <= DEVIATION and row["dev_ref_to_out"] <= DEVIATION, row
     assert_sound_and_local(row)
+
+
+def test_cli_reround_of_a_mitred_rim(tmp_path, capsys):
+    """`meshround reround` on the square rim's 1.4 mm mesh, one seed: four rounds and four mitres found, the rim
+    made 3 mm, the output watertight."""
+    src, dst = tmp_path / "rim.stl", tmp_path / "rim3.stl"
+    mitred_mesh("pocket_rim_square", "coarse").write(str(src))
+    seed = seed_on_round(cases.case("pocket_rim_square"))
+    assert cli.main(["reround", str(src), str(dst), "--seed", f"{seed.x},{seed.y},{seed.z}", "--radius", "3"]) == 0
+    assert "4 round(s) found (r = 2 mm; 4 mitre(s)) -> r = 3 mm" in capsys.readouterr().out
+    topology_sound(Mesh.Mesh(str(dst)))
 
 
 @pytest.mark.parametrize("name,variant,r1,code,why", [

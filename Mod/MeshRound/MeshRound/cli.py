@@ -234,6 +234,18 @@ def run_round(args):
         print(f"meshround: {note}", file=sys.stderr)
 
 
+def _rounds_found(report):
+    """'N round(s) found (r = ...)' of change_radius' report: a strip of rounds mitred into each other counts
+    each of its rounds (a loop has as many as mitres, an open strip one more)."""
+    rounds = 0
+    for s in report["strips"]:
+        mitres = s.get("mitres", 0)
+        rounds += 1 if mitres == 0 else mitres if len(s["corner_line"]) == mitres else mitres + 1
+    found = ", ".join(f"{x:.4g}" for x in report["found_radius"])
+    mitred = sum(s.get("mitres", 0) for s in report["strips"])
+    return f"{rounds} round(s) found (r = {found} mm" + (f"; {mitred} mitre(s))" if mitred else ")")
+
+
 def run_round_deck(args):
     """IN and OUT solver decks: MeshRound.round_deck or, for reround, change_radius_deck (each writes OUT
     itself, all or nothing)."""
@@ -257,8 +269,7 @@ def run_round_deck(args):
                                                                              output=args.output), path))])
     d = res.report["deck"]
     if reround:
-        found = ", ".join(f"{x:.4g}" for x in res.report["found_radius"])
-        done = f"{len(res.report['strips'])} round(s) found (r = {found} mm) -> r = {args.radius:g} mm"
+        done = f"{_rounds_found(res.report)} -> r = {args.radius:g} mm"
     else:
         done = f"{res.report.get('chains')} chain(s) rounded"
     print(f"meshround: {done}; {d['elements_removed']} of "
@@ -308,8 +319,7 @@ def run_reround(args):
         raise Failure(f"changing the radius failed [{getattr(exc, 'code', 'invalid_input')}]: {exc}") from exc
     _write_result(args, result)
     r = result.report
-    found = ", ".join(f"{x:.4g}" for x in r["found_radius"])
-    print(f"meshround: {len(r['strips'])} round(s) found (r = {found} mm) -> r = {args.radius:g} mm, "
+    print(f"meshround: {_rounds_found(r)} -> r = {args.radius:g} mm, "
           f"{r.get('facets_in')} -> {r.get('facets_out')} facets, {r.get('seconds', 0.0):.2f} s -> {args.output}")
 
 
