@@ -458,8 +458,6 @@ StripReport sharpen_one(const MeshTopology& mesh, const Vec3& seed, const Sharpe
   rep.points_merged = merge_close_points(mesh, strip, rep.found_radius, edit, fold);
   if (strip.mitred) drop_flat_facets(mesh, strip, edit);
   const SharpChain chain = corner_chain(strip);
-  if (getenv("MR_DUMP")) { Points V2; Triangles F2; write_mesh(edit, V2, F2, nullptr); FILE* fo = fopen(getenv("MR_DUMP"), "w"); for (int i = 0; i < V2.rows(); ++i) fprintf(fo, "v %.9g %.9g %.9g\n", V2(i,0), V2(i,1), V2(i,2)); for (int i = 0; i < F2.rows(); ++i) fprintf(fo, "f %d %d %d\n", F2(i,0)+1, F2(i,1)+1, F2(i,2)+1); fclose(fo);
-    for (const auto& [v, t] : fold.t) { const Vec3 x = mesh.point(v); fprintf(stderr, "V %d (%g %g %g) t %g role %d crease %d piece %d -> %g %g %g\n", v, x.x(), x.y(), x.z(), t, int(strip.role.at(v)), int(strip.mitre_of.count(v)), strip.frame(v).piece, edit.point(v).x(), edit.point(v).y(), edit.point(v).z()); } }
   check_result(edit, chain, changed_reach(edit, chain) * 1.001 + 1e-9, fold.setback);
   write_mesh(edit, V_out, F_out, origin);
   rep.opening_deg = std::acos(std::clamp(strip.normal[0].dot(strip.normal[1]), -1.0, 1.0)) * 180 / M_PI;
