@@ -116,6 +116,28 @@ constexpr double kSideShare = 0.01;  // x a side's length: how near its ends a c
 constexpr double kSideSplitShare = 0.15;  // x a side's length: a corner that near a flat side (not near its ends)
                                           // may split that side (insert_corner)
 
+// Whether input vertex v may move to `to`: no facet around it (its own, as split so far, or a piece made
+// with it) turns over, gets a smallest angle under `angle_share` x min(kSnapKeepsAngle, its own), or leaves
+// its plane by more than `off_plane`.
+bool move_keeps_shape(const SplitMesh& m, const MeshTopology& mesh, int v, const Vec3& to, double angle_share, double off_plane) {
+  std::vector<int> around;
+  for (const int* g = mesh.facets_begin(v); g != mesh.facets_end(v); ++g) m.live(*g, around);
+  for (size_t t = size_t(mesh.num_facets()); t < m.tris.size(); ++t)  // (pieces not of v's own facets)
+    if (!m.gone[t] && std::find(m.tris[t].begin(), m.tris[t].end(), v) != m.tris[t].end()) around.push_back(int(t));
+  for (int t : around) {
+    const auto& g = m.tris[size_t(t)];
+    if (std::find(g.begin(), g.end(), v) == g.end()) continue;
+    Vec3 c[3], c0[3];
+    for (int k = 0; k < 3; ++k) c0[k] = m.points[g[k]], c[k] = g[k] == v ? to : c0[k];
+    const Vec3 n_before = (c0[1] - c0[0]).cross(c0[2] - c0[0]);
+    if ((c[1] - c[0]).cross(c[2] - c[0]).dot(n_before) <= 0 ||
+        smallest_angle(c[0], c[1], c[2]) < angle_share * std::min(kSnapKeepsAngle, smallest_angle(c0[0], c0[1], c0[2])) ||
+        std::abs(n_before.normalized().dot(to - m.points[v])) > off_plane)
+      return false;
+  }
+  return true;
+}
+
 // The corner as a vertex: the nearest vertex when it is one, or when it is a vertex of a flat neighbourhood
 // within kSnapShare of its shortest edge from it (moved there); else the facet or edge split at it.
 int insert_corner(SplitMesh& m, const MeshTopology& mesh, std::vector<int>& facets, const Vec3& q, double slack) {
@@ -130,7 +152,10 @@ int insert_corner(SplitMesh& m, const MeshTopology& mesh, std::vector<int>& face
     const Vec3 n0 = mesh.facet_normal(*mesh.facets_begin(near));
     for (const int* g = mesh.facets_begin(near); g != mesh.facets_end(near); ++g) flat &= mesh.facet_normal(*g).dot(n0) > 1 - 1e-6;
     for (int w : mesh.vertex_neighbours(near)) shortest = std::min(shortest, (m.points[w] - m.points[near]).norm());
-    if (flat && std::abs((q - m.points[near]).dot(n0)) <= slack && near_d <= kSnapShare * shortest) {
+    // (Only where its facets keep their shapes: on a sharpened rim the corner lay on an edge in the mitre's
+    // plane, and a crease vertex 0.02 mm off the plane moved onto it flattened the facet on that edge.)
+    if (flat && std::abs((q - m.points[near]).dot(n0)) <= slack && near_d <= kSnapShare * shortest &&
+        move_keeps_shape(m, mesh, near, q, 1.0, INFINITY)) {
       m.points[near] = q;
       return near;
     }
@@ -206,28 +231,6 @@ int insert_corner(SplitMesh& m, const MeshTopology& mesh, std::vector<int>& face
   m.replace(best, {{f[0], f[1], x}, {f[1], f[2], x}, {f[2], f[0], x}});
   for (int j = 3; j >= 1; --j) facets.push_back(int(m.tris.size()) - j);
   return x;
-}
-
-// Whether input vertex v may move to `to`: no facet around it (its own, as split so far, or a piece made
-// with it) turns over, gets a smallest angle under `angle_share` x min(kSnapKeepsAngle, its own), or leaves
-// its plane by more than `off_plane`.
-bool move_keeps_shape(const SplitMesh& m, const MeshTopology& mesh, int v, const Vec3& to, double angle_share, double off_plane) {
-  std::vector<int> around;
-  for (const int* g = mesh.facets_begin(v); g != mesh.facets_end(v); ++g) m.live(*g, around);
-  for (size_t t = size_t(mesh.num_facets()); t < m.tris.size(); ++t)  // (pieces not of v's own facets)
-    if (!m.gone[t] && std::find(m.tris[t].begin(), m.tris[t].end(), v) != m.tris[t].end()) around.push_back(int(t));
-  for (int t : around) {
-    const auto& g = m.tris[size_t(t)];
-    if (std::find(g.begin(), g.end(), v) == g.end()) continue;
-    Vec3 c[3], c0[3];
-    for (int k = 0; k < 3; ++k) c0[k] = m.points[g[k]], c[k] = g[k] == v ? to : c0[k];
-    const Vec3 n_before = (c0[1] - c0[0]).cross(c0[2] - c0[0]);
-    if ((c[1] - c[0]).cross(c[2] - c[0]).dot(n_before) <= 0 ||
-        smallest_angle(c[0], c[1], c[2]) < angle_share * std::min(kSnapKeepsAngle, smallest_angle(c0[0], c0[1], c0[2])) ||
-        std::abs(n_before.normalized().dot(to - m.points[v])) > off_plane)
-      return false;
-  }
-  return true;
 }
 
 // Vertices a hair off the plane, in a flat neighbourhood near the segment P -> Q: onto the plane (before

@@ -108,6 +108,7 @@ int split_point(const MeshTopology& mesh, const RoundStrip& strip, MeshEdit& edi
     const StripFrame* fu = &strip.frame(on_u && !on_v ? v : u);
     const StripFrame* fv = &strip.frame(on_v && !on_u ? u : v);
     const bool one_crease = on_u && on_v && cu->second.pieces[0] == cv->second.pieces[0] && cu->second.pieces[1] == cv->second.pieces[1];
+    if (one_crease) fv = fu;  // both feet on one round's corner line, which meets the crease's plane at the corner
     if (on_u && on_v && !one_crease)
       for (int p : cu->second.pieces)
         if (p == cv->second.pieces[0] || p == cv->second.pieces[1]) fu = fv = &strip.pieces[size_t(p)].frame;
