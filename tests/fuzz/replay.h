@@ -35,7 +35,7 @@ inline bool verbose() {
 // MESHROUND_FUZZ_MAX_NEW_FACETS=N: every case runs with the work budget RoundOptions::max_new_facets
 // at most N (0 or unset: the decoder's own, the engine's default), so that a case that would make more
 // is refused (work_limit) before it is made: a long run's executions per second are then set by the
-// cases' common size, not by their slow tail (tools/fuzz.sh --long).
+// cases' common size, not by their slow tail. fuzz_round and fuzz_arrays' rounding branch both honour it.
 inline long fuzz_work_budget() {
   static const long budget = [] {
     const char* text = std::getenv("MESHROUND_FUZZ_MAX_NEW_FACETS");
@@ -145,6 +145,7 @@ inline std::string arrays_case(const std::uint8_t* data, std::size_t size) {
         RoundOptions o;
         o.radius = in.chance(128) ? in.uniform(0.01, 2) : coordinate(in);
         o.feature_angle_deg = angle;
+        if (fuzz_work_budget() > 0) o.max_new_facets = std::min(o.max_new_facets, fuzz_work_budget());
         const Points V0 = V;
         const Triangles F0 = F;
         (void)round_edges(V, F, seeds, o);
