@@ -1,6 +1,7 @@
 // The trim's measures and its first sub-pass (trim_side.h): where each base vertex lies against the band's
 // edge, and the vertices near the contact line snapped onto it.
 #include "trim_side.h"
+#include "guard.h"
 
 #include "meshround/cancel.h"
 
@@ -115,6 +116,20 @@ bool snap_keeps_shape(const MeshTopology& mesh, const MeshEdit& edit, int v, con
       return false;
   }
   return true;
+}
+
+// True if a facet around v would turn over or be left without area (the output check's kDegenerateDeg) with
+// v at q: a sliver along the line whose three corners would all be on it (a round's contact row rounded again
+// at the round's own radius: a MeshPart facet along the contact edge, its middle corner 3e-4 or 0.015 mm off
+// that edge, all three snapped onto the line).
+bool snap_flattens(const MeshTopology& mesh, const MeshEdit& edit, int v, const Vec3& q) {
+  for (const int* g = mesh.facets_begin(v); g != mesh.facets_end(v); ++g) {
+    Vec3 c[3];
+    for (int k = 0; k < 3; ++k) c[k] = mesh.F(*g, k) == v ? q : edit.point(mesh.F(*g, k));
+    if ((c[1] - c[0]).cross(c[2] - c[0]).dot(mesh.facet_normal(*g)) <= 0 || smallest_angle(c[0], c[1], c[2]) * 180 / M_PI < kDegenerateDeg)
+      return true;
+  }
+  return false;
 }
 
 }  // namespace
@@ -329,6 +344,7 @@ void SideTrim::snap_near_line(int v, VertexSide& s, const Vec3& away, bool on_en
   if (!(stays_on_end_plane && (move < near_edges || ((on_crease ? move < near_line : move < kNearShaped * shortest) &&
                                                      snap_keeps_shape(mesh, edit, v, q, in_band)))))
     return;
+  if (snap_flattens(mesh, edit, v, q)) return;
   if (!edge_reenters(v, q, s.u)) {
     edit.moved[v] = q;
     s.d = 0;
