@@ -23,6 +23,8 @@
 namespace meshround {
 
 constexpr double kDegenerateDeg = 0.01;  // smallest angle of a sound facet (the yardstick's own)
+constexpr double kWeldShare = 0.01;      // x the tolerance: two points this near are one (a snap target beside a
+                                         // neighbour; two rounds' end columns at a mitre)
 
 // `reach`: the largest distance from the chain at which the rounding may place a point; `tolerance`: the
 // chordal tolerance (how far the round's end profile may stand off an end face). `network`: the other

@@ -337,9 +337,9 @@ RoundedChain round_one_chain(const MeshTopology& mesh, const ChainSeed& seed, co
   // solved (drafted walls) they agree to about 1e-6 r, far closer than any two points of a column. Faces
   // flat only to a mesher's float precision move the balls apart more: a box's top edges sharpened from a
   // MeshPart mesh of their rounds (its contact vertices 3e-5 mm off the top face) gave columns 1e-3 of the
-  // tolerance apart at r = 3, 4 and 6. The weld is a hundredth of the tolerance, still far below a column's
-  // spacing.
-  const double weld = 1e-2 * tol;
+  // tolerance apart at r = 3, 4 and 6. The weld (guard.h kWeldShare of the tolerance) is still far below a
+  // column's spacing.
+  const double weld = kWeldShare * tol;
   shared.vertex_at = [&](const Vec3& p) {
     for (const auto& [q, v] : earlier_points)
       if ((q - p).norm() <= weld) return v;

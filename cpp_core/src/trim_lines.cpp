@@ -39,7 +39,6 @@ namespace {
 constexpr double kSnapKeepsAngle = 10 * M_PI / 180;  // facets around a vertex snapped from afar keep this
 constexpr double kNearShaped = 0.4;                   // x its shortest edge: snapped if its facets keep shape
 constexpr double kHairShare = 0.25;                   // x the tolerance: a dip of the band's edge this deep is a hair
-constexpr double kWeldShare = 0.01;                   // x the tolerance: a snap target this near a neighbour is taken
 
 // The direction a vertex on the mesh boundary may move in without moving the boundary: along its two
 // boundary edges where they run on straight (zero where they turn, or where more meet). Zero for a vertex
@@ -96,9 +95,10 @@ bool snap_target(const MeshTopology& mesh, int v, const ContactLineDistance& dis
   return std::abs(d) <= 1e-6 * (1 + std::abs(t));
 }
 
-// True if no facet around v turns over, or gets a smaller angle than min(kSnapKeepsAngle, its own), when v
-// moves to q (its neighbours where earlier snaps put them). The angle is not asked of a facet with another
-// corner inside the band (`in_band`): the line cuts it and only its piece outside is kept, triangulated anew.
+// True if no facet around v gets a smaller angle than min(kSnapKeepsAngle, its own) when v moves to q (its
+// neighbours where earlier snaps put them; a facet turning over is snap_flattens', asked of every snap). The
+// angle is not asked of a facet with another corner inside the band (`in_band`): the line cuts it and only
+// its piece outside is kept, triangulated anew.
 // (A CAD mesh's sliver 60 mm long beside a crease, one corner 0.07 mm outside the line and one inside:
 // snapping the outer corner along the crease onto the line thinned the sliver, so it stayed, and the strip
 // between it and the line was left a sliver of no area.)
@@ -111,9 +111,7 @@ bool snap_keeps_shape(const MeshTopology& mesh, const MeshEdit& edit, int v, con
       cut |= mesh.F(*g, k) != v && in_band(mesh.F(*g, k));
     }
     const double before = smallest_angle(mesh.corner(*g, 0), mesh.corner(*g, 1), mesh.corner(*g, 2));
-    if ((c[1] - c[0]).cross(c[2] - c[0]).dot(mesh.facet_normal(*g)) <= 0 ||
-        (!cut && smallest_angle(c[0], c[1], c[2]) < std::min(kSnapKeepsAngle, before)))
-      return false;
+    if (!cut && smallest_angle(c[0], c[1], c[2]) < std::min(kSnapKeepsAngle, before)) return false;
   }
   return true;
 }
