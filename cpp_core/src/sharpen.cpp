@@ -8,6 +8,7 @@
 
 #include "delta.h"
 #include "guard.h"
+#include "sharpen_line.h"
 #include "strip.h"
 #include "meshround/cancel.h"
 #include "meshround/mesh_edit.h"
@@ -16,13 +17,7 @@
 namespace meshround {
 namespace {
 
-// Where a strip vertex goes: its share t of the arc (0 at border A, 1 at border B) and its image on the
-// corner's two sides (plane A for t < 1/2, plane B for t > 1/2, the corner line at 1/2).
-struct Fold {
-  std::unordered_map<int, double> t;
-  std::unordered_map<std::uint64_t, int> split;  // strip edge across the corner line -> its point there
-  double setback = 0;                            // largest distance moved (the corner from the arc)
-};
+using sharpen_detail::Fold;
 
 int side_of(double t) { return t < 0.5 ? -1 : t > 0.5 ? 1 : 0; }
 
@@ -227,17 +222,28 @@ int remesh_end(const MeshTopology& mesh, const RoundStrip& round, int e, double 
       }
     }
   }
-  // The outline: the patch's edges whose other facet is not in it, in the patch's own direction.
+  // The outline: the patch's edges whose other facet is not in it, in the patch's own direction. Where it
+  // touches itself (a CAD mesh's end face of a few facets: two of them fanning from the arc meet at a far
+  // corner), the face's facets around that vertex join the patch.
   std::unordered_map<int, int> next;
-  for (int f : patch)
-    for (int k = 0; k < 3; ++k) {
-      const int a = mesh.F(f, k), b = mesh.F(f, (k + 1) % 3);
-      const int g = mesh.neighbour(f, a, b);
-      if (g >= 0 && patch.count(g)) continue;
-      if (!next.emplace(a, b).second)
-        throw RoundingError(ErrorCode::ResultInvalid, "the end face at " + format_point(mesh.point(a)) + " around the rebuilt corner is not one "
-                            "patch (its outline touches itself); nothing was changed");
-    }
+  while (next.empty()) {
+    int pinch = -1;
+    for (int f : patch)
+      for (int k = 0; k < 3 && pinch < 0; ++k) {
+        const int a = mesh.F(f, k), b = mesh.F(f, (k + 1) % 3);
+        const int g = mesh.neighbour(f, a, b);
+        if (g >= 0 && patch.count(g)) continue;
+        if (!next.emplace(a, b).second) pinch = a;
+      }
+    if (pinch < 0) break;
+    next.clear();
+    const size_t before = patch.size();
+    for (const int* g = mesh.facets_begin(pinch); g != mesh.facets_end(pinch); ++g)
+      if (on_face(*g)) patch.insert(*g);
+    if (patch.size() == before)
+      throw RoundingError(ErrorCode::ResultInvalid, "the end face at " + format_point(mesh.point(pinch)) + " around the rebuilt corner is not one "
+                          "patch (its outline touches itself); nothing was changed");
+  }
   std::vector<int> loop{next.begin()->first};
   while (true) {
     const int a = loop.back();
@@ -262,147 +268,6 @@ int remesh_end(const MeshTopology& mesh, const RoundStrip& round, int e, double 
   fill.admit = [corner, axis, r](const Vec3& p) { const Vec3 d = p - corner; return (d - axis * axis.dot(d)).norm() <= (1 + kEndMargin) * r; };
   triangulate_polygon(edit, loop, normal, edit.added, fill);
   return int(patch.size());
-}
-
-// Points on the rebuilt edge much closer than its usual spacing (a split point a hair from the end corner
-// or from a vertex snapped onto the line) make slivers and a stub of an edge that round_edges reads as a
-// turn: a split point closer than kMergeShare of the median spacing to its neighbour along the edge is
-// merged into it (the facets between the two go).
-constexpr double kMergeShare = 0.25;
-
-// Replaces each vertex of `into` in the new facets and in the strip's facets kept whole (with a crease's
-// vertex merged into a mitre's corner); facets left with a repeated corner go.
-void renumber(const MeshTopology& mesh, const RoundStrip& strip, const std::unordered_map<int, int>& into, MeshEdit& edit) {
-  auto mapped = [&](std::array<int, 3> f) {
-    for (int& v : f)
-      if (auto it = into.find(v); it != into.end()) v = it->second;
-    return f;
-  };
-  std::vector<std::array<int, 3>> kept;
-  for (const auto& f : edit.added) kept.push_back(mapped(f));
-  for (int f : strip.facets) {
-    const std::array<int, 3> whole{mesh.F(f, 0), mesh.F(f, 1), mesh.F(f, 2)};
-    if (edit.removed.count(f) || mapped(whole) == whole) continue;
-    edit.removed.insert(f);
-    kept.push_back(mapped(whole));
-  }
-  edit.added.clear();
-  for (const auto& f : kept)
-    if (f[0] != f[1] && f[1] != f[2] && f[2] != f[0]) edit.added.push_back(f);
-}
-
-// A vertex of a mitre's crease that folds within this share of r of the mitre's corner goes onto it (the
-// crease's vertex at mid-arc of a CAD mesh lands 0.006 mm from it on a 2 mm round, as t's snap does on a
-// straight round).
-constexpr double kCornerSnapShare = 0.01;
-// A point on the rebuilt edge within this share of r of a mitre's corner goes onto it (a split point 0.02 mm
-// from it on a 2 mm rim: the chain round_edges traces there would end in a stub).
-constexpr double kCornerJoinShare = 0.05;
-
-// A mitred strip's corners (where two rebuilt edges meet): the points there -- a crease's split, points whose
-// foot the corner stopped, a crease's vertex folded a hair from it -- become one, exactly there (into `into`);
-// returns them all (none is merged along the line after: that would cut the corner).
-std::unordered_set<int> join_at_mitre_corners(const RoundStrip& strip, const std::vector<std::pair<double, int>>& line, int n_in, double r,
-                                              MeshEdit& edit, std::unordered_map<int, int>& into) {
-  std::unordered_set<int> cornered;
-  for (size_t i = strip.closed ? 0 : 1; strip.mitred && i < strip.pieces.size(); ++i) {
-    const Vec3 c = strip.pieces[i].frame.corner;
-    std::vector<int> here;
-    for (const auto& [s, q] : line)
-      if ((edit.point(q) - c).norm() <= kCornerJoinShare * r) here.push_back(q);
-    for (const auto& [v, crease] : strip.mitre_of)
-      if ((edit.point(v) - c).norm() <= kCornerSnapShare * r) here.push_back(v);
-    if (here.empty()) continue;
-    const int keep = *std::min_element(here.begin(), here.end());  // an input vertex, if any is there
-    if (keep < n_in) edit.moved[keep] = c;
-    else edit.new_points[size_t(keep - n_in)] = c;
-    for (int q : here) {
-      cornered.insert(q);
-      if (q != keep) into[q] = keep;
-    }
-  }
-  return cornered;
-}
-
-int merge_close_points(const MeshTopology& mesh, const RoundStrip& strip, double r, MeshEdit& edit, const Fold& fold) {
-  std::vector<std::pair<double, int>> line;  // (s, vertex) of every vertex on the corner line
-  for (const auto& [key, q] : fold.split) (void)key, line.push_back({strip.param(edit.point(q)), q});
-  for (const auto& [v, t] : fold.t)
-    if (t == 0.5) line.push_back({strip.param(edit.point(v)), v});
-  if (line.size() < 3) return 0;
-  std::sort(line.begin(), line.end());
-  std::vector<double> gaps;
-  for (size_t i = 0; i + 1 < line.size(); ++i) gaps.push_back(line[i + 1].first - line[i].first);
-  std::vector<double> sorted = gaps;
-  std::nth_element(sorted.begin(), sorted.begin() + sorted.size() / 2, sorted.end());
-  const double close = kMergeShare * sorted[sorted.size() / 2];
-  const int n_in = mesh.num_vertices();
-  std::unordered_map<int, int> into;
-  const std::unordered_set<int> cornered = join_at_mitre_corners(strip, line, n_in, r, edit, into);
-  for (size_t i = 0; i < gaps.size(); ++i) {
-    if (gaps[i] >= close) continue;
-    const int a = line[i].second, b = line[i + 1].second;
-    if (into.count(a) || into.count(b) || cornered.count(a) || cornered.count(b)) continue;
-    if (b >= n_in && i + 2 < line.size()) into[b] = a;       // the later one, unless it ends the edge
-    else if (a >= n_in && i > 0) into[a] = b;                // the earlier one, unless it starts the edge
-  }
-  if (into.empty()) return 0;
-  renumber(mesh, strip, into, edit);
-  return int(into.size());
-}
-
-// Around a mitre's corner a fold can leave a facet of no area, its three corners on one line: a mesher's
-// sliver lying in the crease (its corners on it, or at its end on the walls' corner line, where the two
-// rounds meet nearly tangent), or a CAD mesh's facet the round's length whose corners at both creases fold
-// onto the two corners and whose third is a split point between them. It goes, and the facet across its
-// longest side is split at its middle corner, which lies on that side now.
-int drop_flat_facets(const MeshTopology& mesh, const RoundStrip& strip, MeshEdit& edit) {
-  auto flat = [&](const std::array<int, 3>& t, int* m) {  // *m: the corner opposite the longest side
-    const Vec3 p[3] = {edit.point(t[0]), edit.point(t[1]), edit.point(t[2])};
-    double longest = 0;
-    for (int k = 0; k < 3; ++k)
-      if ((p[(k + 1) % 3] - p[(k + 2) % 3]).norm() > longest) longest = (p[(k + 1) % 3] - p[(k + 2) % 3]).norm(), *m = k;
-    return (p[1] - p[0]).cross(p[2] - p[0]).norm() <= 1e-12 * longest * longest;
-  };
-  auto split_across = [&](int a, int b, int mid, const std::array<int, 3>& t) {  // t has side (a, b): its two halves
-    for (int k = 0; k < 3; ++k)
-      if ((t[k] == a && t[(k + 1) % 3] == b) || (t[k] == b && t[(k + 1) % 3] == a)) {
-        std::array<int, 3> one = t, two = t;
-        one[(k + 1) % 3] = mid, two[k] = mid;
-        edit.added.push_back(one), edit.added.push_back(two);
-        return;
-      }
-  };
-  int dropped = 0;
-  for (bool again = true; again && dropped < int(strip.facets.size());) {
-    again = false;
-    std::array<int, 3> t{};
-    int m = 0;
-    for (size_t i = 0; i < edit.added.size() && !again; ++i)
-      if (flat(edit.added[i], &m)) t = edit.added[i], edit.added.erase(edit.added.begin() + long(i)), again = true;
-    for (size_t i = 0; i < strip.facets.size() && !again; ++i) {
-      const int f = strip.facets[i];
-      const std::array<int, 3> whole{mesh.F(f, 0), mesh.F(f, 1), mesh.F(f, 2)};
-      if (!edit.removed.count(f) && flat(whole, &m)) t = whole, edit.removed.insert(f), again = true;
-    }
-    if (!again) break;
-    ++dropped;
-    const int a = t[(m + 1) % 3], b = t[(m + 2) % 3], mid = t[m];
-    bool done = false;
-    for (size_t i = 0; i < edit.added.size() && !done; ++i) {
-      const std::array<int, 3> u = edit.added[i];
-      if (std::count(u.begin(), u.end(), a) && std::count(u.begin(), u.end(), b)) {
-        edit.added.erase(edit.added.begin() + long(i));
-        split_across(a, b, mid, u), done = true;
-      }
-    }
-    for (int g : (a < mesh.num_vertices() && b < mesh.num_vertices()) ? mesh.edge_facets(a, b) : std::vector<int>{})
-      if (!done && !edit.removed.count(g)) {
-        edit.removed.insert(g);
-        split_across(a, b, mid, {mesh.F(g, 0), mesh.F(g, 1), mesh.F(g, 2)}), done = true;
-      }
-  }
-  return dropped;
 }
 
 // The corner line as a chain, for the output check's reach (guard.h).
@@ -456,8 +321,8 @@ StripReport sharpen_one(const MeshTopology& mesh, const Vec3& seed, const Sharpe
   rep.facets_split = split_facets(mesh, strip, edit, fold);
   for (int e = 0; e < 2; ++e)
     if (strip.ends[e].face) ++rep.end_faces, rep.end_facets_remeshed += remesh_end(mesh, strip, e, rep.found_radius, o.flat_deg, edit, fold);
-  rep.points_merged = merge_close_points(mesh, strip, rep.found_radius, edit, fold);
-  if (strip.mitred) drop_flat_facets(mesh, strip, edit);
+  rep.points_merged = sharpen_detail::merge_close_points(mesh, strip, rep.found_radius, edit, fold);
+  if (strip.mitred) sharpen_detail::drop_flat_facets(mesh, strip, edit);
   const SharpChain chain = corner_chain(strip);
   check_result(edit, chain, changed_reach(edit, chain) * 1.001 + 1e-9, fold.setback);
   write_mesh(edit, V_out, F_out, origin);

@@ -131,17 +131,48 @@ struct MitrePass {
 
   MitrePass(const MeshTopology& m, Facets& f, const SharpenOptions& opt) : mesh(m), fx(f), o(opt) {}
 
+  // A facet with a corner whose facets all lie in its plane or across a sharp edge from it touches the
+  // round with one edge at most: a side's. (Facets::flat tells the sides on fine meshes, but a CAD mesh's
+  // round has rows of facets lying flat, and a side may be one or two facets, each bordering the round.)
+  bool off_the_round(int f) {
+    for (int k = 0; k < 3; ++k) {
+      bool flat = true;
+      for (const int* h = mesh.facets_begin(mesh.F(f, k)); flat && h != mesh.facets_end(mesh.F(f, k)); ++h) {
+        const double turn = angle_deg(fx.normal(f), fx.normal(*h));
+        flat = turn < o.flat_deg || turn >= o.strip_turn_deg;
+      }
+      if (flat) return true;
+    }
+    return false;
+  }
+  // The sides' planes from the facets beside the flood that are off the round, or where they make fewer than
+  // three (a CAD mesh's face of two facets, both bordering the round, was flooded), from those in the flood
+  // too; `rest`: the other facets (the strip's, but for those lying on a side's plane, below).
+  bool side_planes(const std::vector<int>& flood_in, const std::vector<int>& beside, std::vector<int>& rest) {
+    std::vector<int> sides;
+    for (int f : beside) (off_the_round(f) ? sides : rest).push_back(f);
+    if (cluster_planes(mesh, fx, sides, o.flat_deg, slack, planes) && planes.size() >= 3) {
+      rest.insert(rest.end(), flood_in.begin(), flood_in.end());
+      return true;
+    }
+    planes.clear(), rest.clear();
+    for (const std::vector<int>* part : {&beside, &flood_in})
+      for (int f : *part) (off_the_round(f) ? sides : rest).push_back(f);
+    return cluster_planes(mesh, fx, sides, o.flat_deg, slack, planes) && planes.size() >= 3;
+  }
+
   // The planes beside the flood and the strip's facets; plane A and the side of each plane the rounds lie on.
   bool find_planes(int f0, const std::vector<int>& flood_in, const std::vector<int>& beside) {
     Vec3 lo = Vec3::Constant(INFINITY), hi = Vec3::Constant(-INFINITY);
     for (int f : flood_in)
       for (int k = 0; k < 3; ++k) lo = lo.cwiseMin(mesh.corner(f, k)), hi = hi.cwiseMax(mesh.corner(f, k));
     slack = 2 * on_plane_slack((hi - lo).norm(), std::max(lo.cwiseAbs().maxCoeff(), hi.cwiseAbs().maxCoeff()));
-    if (!cluster_planes(mesh, fx, beside, o.flat_deg, slack, planes) || planes.size() < 3) return false;
+    std::vector<int> rest;
+    if (!side_planes(flood_in, beside, rest)) return false;
 
     // The flood's first row on each side lies on the side's plane (a facet there is curved by Facets::flat,
     // its neighbour on the round turning from it): the side's, not the strip's.
-    for (int f : flood_in) {
+    for (int f : rest) {
       bool on_side = false;
       for (SidePlane& p : planes) {
         if (angle_deg(fx.normal(f), p.normal) >= 2 * o.flat_deg) continue;
@@ -154,9 +185,11 @@ struct MitrePass {
     }
     if (flood.empty() || std::find(flood.begin(), flood.end(), f0) == flood.end()) return false;
     // A mesher's sliver in a crease whose normal turns from all its neighbours' by strip_turn_deg or more was
-    // not flooded: a facet across the strip's edge whose corners are all the strip's is the strip's.
+    // not flooded: a facet across the strip's edge whose corners are all the strip's is the strip's (but for a
+    // side's: a CAD mesh's facet across a mitre's corner on plane A has its corners on two rounds' borders).
     {
       std::unordered_set<int> vertices, have(flood_in.begin(), flood_in.end());
+      for (const SidePlane& p : planes) have.insert(p.facets.begin(), p.facets.end());
       for (int f : flood)
         for (int k = 0; k < 3; ++k) vertices.insert(mesh.F(f, k));
       for (size_t i = 0, n = flood.size(); i < n; ++i)
@@ -165,6 +198,10 @@ struct MitrePass {
           if (g < 0 || have.count(g)) continue;
           bool inside = true;
           for (int j = 0; j < 3; ++j) inside &= vertices.count(mesh.F(g, j)) > 0;
+          for (int j = 0; j < 3 && inside; ++j) {  // (not a face's facet beside the strip: a CAD mesh's end face
+            const int h = fx.across(g, j);          // fans from the arc's end to the arc's vertices)
+            inside = h < 0 || have.count(h) || angle_deg(fx.normal(g), fx.normal(h)) >= o.flat_deg;
+          }
           if (inside) flood.push_back(g), have.insert(g);
         }
     }
@@ -296,17 +333,26 @@ struct MitrePass {
         if (std::abs(lu.determinant()) < 1e-6) return false;  // parallel walls: no corner
         corners[key] = lu.solve(Eigen::Vector3d(pa.offset, p1.offset, p2.offset));
       }
+    // The middle of each round along its axis: of its vertices' extent, creases' included (their mean leans
+    // to where the vertices crowd: on a CAD mesh of a drafted rim, along the creases past a corner).
+    std::map<int, double> middle;
+    {
+      std::map<int, std::pair<double, double>> extent;
+      for (const auto& [v, n] : near)
+        for (int p : {n.piece, n.other}) {
+          if (p < 0) continue;
+          const double s = pieces.at(p).frame.axis.dot(mesh.point(v));
+          auto it = extent.emplace(p, std::make_pair(s, s)).first;
+          it->second.first = std::min(it->second.first, s), it->second.second = std::max(it->second.second, s);
+        }
+      for (const auto& [p, e] : extent) middle[p] = 0.5 * (e.first + e.second);
+    }
     for (const auto& [key, c] : corners)
       for (int side = 0; side < 2; ++side) {
         Piece& piece = pieces.at(side ? key.second : key.first);
         const int other = side ? key.first : key.second;
         // Its axis points away from a corner at its low end (prev), toward the one at its high end (next).
-        const Vec3 mid_piece = [&] {
-          Vec3 m = Vec3::Zero();
-          for (int v : members.at(piece.plane)) m += mesh.point(v);
-          return Vec3(m / double(members.at(piece.plane).size()));
-        }();
-        const bool high = piece.frame.axis.dot(c - mid_piece) > 0;
+        const bool high = piece.frame.axis.dot(c) > middle.at(piece.plane);
         int& slot = high ? piece.next : piece.prev;
         if (slot >= 0 && slot != other) return false;  // two corners at one end
         slot = other;

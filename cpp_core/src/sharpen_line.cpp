@@ -1,0 +1,182 @@
+// The rebuilt edge once a strip is folded (sharpen.cpp): points on it much closer than its spacing made
+// one, a mitre's corner one point, and the facets a fold left without area dropped.
+#include "sharpen_line.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <unordered_set>
+#include <vector>
+
+#include "guard.h"
+
+namespace meshround::sharpen_detail {
+namespace {
+
+// Points on the rebuilt edge much closer than its usual spacing (a split point a hair from the end corner
+// or from a vertex snapped onto the line) make slivers and a stub of an edge that round_edges reads as a
+// turn: a split point closer than kMergeShare of the median spacing to its neighbour along the edge is
+// merged into it (the facets between the two go).
+constexpr double kMergeShare = 0.25;
+
+// Replaces each vertex of `into` in the new facets and in the strip's facets kept whole (with a crease's
+// vertex merged into a mitre's corner); facets left with a repeated corner go.
+void renumber(const MeshTopology& mesh, const RoundStrip& strip, const std::unordered_map<int, int>& into, MeshEdit& edit) {
+  auto mapped = [&](std::array<int, 3> f) {
+    for (int& v : f)
+      if (auto it = into.find(v); it != into.end()) v = it->second;
+    return f;
+  };
+  std::vector<std::array<int, 3>> kept;
+  for (const auto& f : edit.added) kept.push_back(mapped(f));
+  for (int f : strip.facets) {
+    const std::array<int, 3> whole{mesh.F(f, 0), mesh.F(f, 1), mesh.F(f, 2)};
+    if (edit.removed.count(f) || mapped(whole) == whole) continue;
+    edit.removed.insert(f);
+    kept.push_back(mapped(whole));
+  }
+  edit.added.clear();
+  for (const auto& f : kept)
+    if (f[0] != f[1] && f[1] != f[2] && f[2] != f[0]) edit.added.push_back(f);
+}
+
+// A vertex of a mitre's crease that folds within this share of r of the mitre's corner goes onto it (the
+// crease's vertex at mid-arc of a CAD mesh lands 0.006 mm from it on a 2 mm round, as t's snap does on a
+// straight round).
+constexpr double kCornerSnapShare = 0.01;
+// A point on the rebuilt edge within this share of r of a mitre's corner goes onto it (a split point 0.02 mm
+// from it on a 2 mm rim: the chain round_edges traces there would end in a stub).
+constexpr double kCornerJoinShare = 0.05;
+
+// A mitred strip's corners (where two rebuilt edges meet): the points there -- a crease's split, points whose
+// foot the corner stopped, a crease's vertex folded a hair from it -- become one, exactly there (into `into`);
+// returns them all (none is merged along the line after: that would cut the corner).
+std::unordered_set<int> join_at_mitre_corners(const RoundStrip& strip, const std::vector<std::pair<double, int>>& line, int n_in, double r,
+                                              MeshEdit& edit, std::unordered_map<int, int>& into) {
+  std::unordered_set<int> cornered;
+  for (size_t i = strip.closed ? 0 : 1; strip.mitred && i < strip.pieces.size(); ++i) {
+    const Vec3 c = strip.pieces[i].frame.corner;
+    std::vector<int> here;
+    for (const auto& [s, q] : line)
+      if ((edit.point(q) - c).norm() <= kCornerJoinShare * r) here.push_back(q);
+    for (const auto& [v, crease] : strip.mitre_of)
+      if ((edit.point(v) - c).norm() <= kCornerSnapShare * r) here.push_back(v);
+    if (here.empty()) continue;
+    const int keep = *std::min_element(here.begin(), here.end());  // an input vertex, if any is there
+    if (keep < n_in) edit.moved[keep] = c;
+    else edit.new_points[size_t(keep - n_in)] = c;
+    for (int q : here) {
+      cornered.insert(q);
+      if (q != keep) into[q] = keep;
+    }
+  }
+  return cornered;
+}
+
+}  // namespace
+
+int merge_close_points(const MeshTopology& mesh, const RoundStrip& strip, double r, MeshEdit& edit, const Fold& fold) {
+  std::vector<std::pair<double, int>> line;  // (s, vertex) of every vertex on the corner line
+  for (const auto& [key, q] : fold.split) (void)key, line.push_back({strip.param(edit.point(q)), q});
+  for (const auto& [v, t] : fold.t)
+    if (t == 0.5) line.push_back({strip.param(edit.point(v)), v});
+  if (line.size() < 3) return 0;
+  std::sort(line.begin(), line.end());
+  std::vector<double> gaps;
+  for (size_t i = 0; i + 1 < line.size(); ++i) gaps.push_back(line[i + 1].first - line[i].first);
+  std::vector<double> sorted = gaps;
+  std::nth_element(sorted.begin(), sorted.begin() + sorted.size() / 2, sorted.end());
+  const double close = kMergeShare * sorted[sorted.size() / 2];
+  const int n_in = mesh.num_vertices();
+  std::unordered_map<int, int> into;
+  const std::unordered_set<int> cornered = join_at_mitre_corners(strip, line, n_in, r, edit, into);
+  for (size_t i = 0; i < gaps.size(); ++i) {
+    if (gaps[i] >= close) continue;
+    const int a = line[i].second, b = line[i + 1].second;
+    if (into.count(a) || into.count(b) || cornered.count(a) || cornered.count(b)) continue;
+    if (b >= n_in && i + 2 < line.size()) into[b] = a;       // the later one, unless it ends the edge
+    else if (a >= n_in && i > 0) into[a] = b;                // the earlier one, unless it starts the edge
+  }
+  if (into.empty()) return 0;
+  renumber(mesh, strip, into, edit);
+  return int(into.size());
+}
+
+// Around a mitre's corner a fold can leave a facet of no area (an angle under the output check's
+// kDegenerateDeg, guard.h), its three corners on one line: a mesher's sliver lying in the crease (its corners
+// on it, or at its end on the walls' corner line, where the two rounds meet nearly tangent), or a CAD mesh's
+// facet the round's length whose corners at both creases fold onto the two corners and whose third is a split
+// point between them. It goes, and the facet across its longest side is split at its middle corner, which lies
+// on that side now. Where two of its corners fold onto one point (a sliver of a CAD mesh's crease whose side
+// is 0.002 mm long, folded onto plane A), they become one instead.
+constexpr double kNeedleShare = 1e-3;  // a side this share of the longest or less: its two ends are one point
+int drop_flat_facets(const MeshTopology& mesh, const RoundStrip& strip, MeshEdit& edit) {
+  auto flat = [&](const std::array<int, 3>& t, int* m, int* shortest) {  // *m: the corner opposite the longest side
+    const Vec3 p[3] = {edit.point(t[0]), edit.point(t[1]), edit.point(t[2])};
+    double longest = 0, least = INFINITY;
+    for (int k = 0; k < 3; ++k) {
+      const double side = (p[(k + 1) % 3] - p[(k + 2) % 3]).norm();
+      if (side > longest) longest = side, *m = k;
+      if (side < least) least = side, *shortest = k;
+    }
+    if (least > kNeedleShare * longest) *shortest = -1;
+    return smallest_angle(p[0], p[1], p[2]) * 180 / M_PI < kDegenerateDeg;
+  };
+  auto split_across = [&](int a, int b, int mid, const std::array<int, 3>& t) {  // t has side (a, b): its two halves
+    for (int k = 0; k < 3; ++k)
+      if ((t[k] == a && t[(k + 1) % 3] == b) || (t[k] == b && t[(k + 1) % 3] == a)) {
+        std::array<int, 3> one = t, two = t;
+        one[(k + 1) % 3] = mid, two[k] = mid;
+        edit.added.push_back(one), edit.added.push_back(two);
+        return;
+      }
+  };
+  int dropped = 0;
+  for (bool again = true; again && dropped < int(strip.facets.size());) {
+    again = false;
+    std::array<int, 3> t{};
+    int m = 0, shortest = -1;
+    for (size_t i = 0; i < edit.added.size() && !again; ++i)
+      if (flat(edit.added[i], &m, &shortest)) t = edit.added[i], again = true;
+    for (size_t i = 0; i < strip.facets.size() && !again; ++i) {
+      const int f = strip.facets[i];
+      const std::array<int, 3> whole{mesh.F(f, 0), mesh.F(f, 1), mesh.F(f, 2)};
+      if (!edit.removed.count(f) && flat(whole, &m, &shortest)) t = whole, again = true;
+    }
+    if (!again) break;
+    ++dropped;
+    if (shortest >= 0) {  // two corners on one point: the one off a crease goes into the other
+      int gone = t[(shortest + 1) % 3], keep = t[(shortest + 2) % 3];
+      if (strip.mitre_of.count(gone) && !strip.mitre_of.count(keep)) std::swap(gone, keep);
+      if (gone < mesh.num_vertices() && !edit.moved.count(gone)) std::swap(gone, keep);  // (a border vertex stays)
+      if (gone >= mesh.num_vertices() || edit.moved.count(gone)) {
+        renumber(mesh, strip, {{gone, keep}}, edit);
+        continue;
+      }
+    }
+    for (size_t i = 0; i < edit.added.size(); ++i)
+      if (edit.added[i] == t) {
+        edit.added.erase(edit.added.begin() + long(i));
+        break;
+      }
+    for (int f : strip.facets)
+      if (std::array<int, 3>{mesh.F(f, 0), mesh.F(f, 1), mesh.F(f, 2)} == t) edit.removed.insert(f);
+    const int a = t[(m + 1) % 3], b = t[(m + 2) % 3], mid = t[m];
+    bool done = false;
+    for (size_t i = 0; i < edit.added.size() && !done; ++i) {
+      const std::array<int, 3> u = edit.added[i];
+      if (std::count(u.begin(), u.end(), a) && std::count(u.begin(), u.end(), b)) {
+        edit.added.erase(edit.added.begin() + long(i));
+        split_across(a, b, mid, u), done = true;
+      }
+    }
+    for (int g : (a < mesh.num_vertices() && b < mesh.num_vertices()) ? mesh.edge_facets(a, b) : std::vector<int>{})
+      if (!done && !edit.removed.count(g)) {
+        edit.removed.insert(g);
+        split_across(a, b, mid, {mesh.F(g, 0), mesh.F(g, 1), mesh.F(g, 2)}), done = true;
+      }
+  }
+  return dropped;
+}
+
+}  // namespace meshround::sharpen_detail

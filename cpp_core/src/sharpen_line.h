@@ -1,0 +1,28 @@
+// Private to the sharpen pass (sharpen.cpp, sharpen_line.cpp): the fold of a strip's vertices onto the two
+// sides, and the clean-up of the rebuilt edge once they are folded.
+#pragma once
+#include <cstdint>
+#include <unordered_map>
+
+#include "meshround/mesh_edit.h"
+#include "strip.h"
+
+namespace meshround::sharpen_detail {
+
+// Where a strip vertex goes: its share t of the arc (0 at border A, 1 at border B) and its image on the
+// corner's two sides (plane A for t < 1/2, plane B for t > 1/2, the corner line at 1/2).
+struct Fold {
+  std::unordered_map<int, double> t;
+  std::unordered_map<std::uint64_t, int> split;  // strip edge across the corner line -> its point there
+  double setback = 0;                            // largest distance moved (the corner from the arc)
+};
+
+// Points on the rebuilt edge much closer than its usual spacing merged, and a mitred strip's corners made
+// one point each; returns how many points went.
+int merge_close_points(const MeshTopology& mesh, const RoundStrip& strip, double r, MeshEdit& edit, const Fold& fold);
+
+// A mitred strip's folded facets without area dropped (their neighbours split, or two corners on one point
+// made one); returns how many.
+int drop_flat_facets(const MeshTopology& mesh, const RoundStrip& strip, MeshEdit& edit);
+
+}  // namespace meshround::sharpen_detail
