@@ -227,6 +227,39 @@ void side_planes(const MeshTopology& mesh, const Vec3& where, RoundStrip& strip)
   for (const auto& [v, role] : strip.role) strip.s_lo = std::min(strip.s_lo, strip.s_of(mesh.point(v))), strip.s_hi = std::max(strip.s_hi, strip.s_of(mesh.point(v)));
 }
 
+// Where the strip meets the mesh boundary, that must be one of its ends: a path of open edges from one
+// side's border across to the other's. A loop of them, or a path from a side back to the same side, is a
+// hole in the round (its vertices would be folded onto an end face the round does not reach).
+void refuse_holes(const MeshTopology& mesh, const std::vector<std::pair<int, int>>& end_edges, const RoundStrip& strip) {
+  std::unordered_map<int, std::vector<int>> open;  // vertex -> its neighbours along open edges
+  for (const auto& [f, k] : end_edges) {
+    const int a = mesh.F(f, k), b = mesh.F(f, (k + 1) % 3);
+    if (mesh.edge_facet_count(a, b) != 1) continue;
+    open[a].push_back(b), open[b].push_back(a);
+  }
+  std::unordered_set<int> seen;
+  for (const auto& [v0, unused] : open) {
+    (void)unused;
+    if (!seen.insert(v0).second) continue;
+    std::vector<int> part{v0};
+    size_t degrees = 0;
+    for (size_t i = 0; i < part.size(); ++i) {
+      degrees += open.at(part[i]).size();
+      for (int w : open.at(part[i]))
+        if (seen.insert(w).second) part.push_back(w);
+    }
+    int sides = 0;  // bit 1: side A's border reached, bit 2: side B's
+    for (int v : part)
+      if (open.at(v).size() == 1) {
+        auto role = strip.role.find(v);
+        if (role != strip.role.end() && (role->second == StripRole::BorderA || role->second == StripRole::BorderB)) sides |= int(role->second);
+      }
+    if (strip.closed || degrees / 2 >= part.size() || sides != 3)
+      throw RoundingError(ErrorCode::NonManifoldInput, "the mesh is open (a hole in the round, not an end of it) where the rounding goes, at " +
+                          format_point(mesh.point(v0)) + "; nothing was changed");
+  }
+}
+
 // The ends: the end faces across the end edges (each one plane), or the mesh boundary.
 void strip_ends(const MeshTopology& mesh, Facets& fx, const std::vector<std::pair<int, int>>& end_edges, const SharpenOptions& o,
                 const Vec3& where, RoundStrip& strip) {
@@ -306,6 +339,7 @@ RoundStrip recognise_strip(const MeshTopology& mesh, const Vec3& seed, const Sha
     flood_strip(mesh, fx, f0, o, seed, strip, end_edges);
     side_planes(mesh, seed, strip);
   }
+  refuse_holes(mesh, end_edges, strip);
   strip_ends(mesh, fx, end_edges, o, seed, strip);
   if (strip.curved) {
     // A vertex a hair outside a side's plane (its station's tangent plane, within measure_clearance of its

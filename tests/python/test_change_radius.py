@@ -485,9 +485,10 @@ def test_a_rim_around_rounded_wall_corners_made_larger_on_a_coarse_mesh_is_refus
 @pytest.mark.parametrize("where,refused", [((40.0, 14.6, 29.4), True), ((40.0, 12.5, 30.0), False), ((40.0, 15.0, 26.0), False)],
                          ids=["in-the-round", "on-top-in-the-new-band", "on-the-wall-beyond"])
 def test_a_hole_near_a_rim_round_is_named_or_kept(where, refused):
-    """One facet taken out of the rim's 0.8 mm mesh, the 2 mm rim made 3 mm. In the old round: the new round's
-    trim meets the hole's edge, refused non_manifold_input naming the hole (it was a result_invalid about a moved
-    boundary vertex), the input untouched. On the top face 1.8 mm from the rim (inside what the 3 mm round
+    """One facet taken out of the rim's 0.8 mm mesh, the 2 mm rim made 3 mm. In the old round: refused
+    non_manifold_input naming the hole when the strip is recognised (its open edges are not an end of the round:
+    its vertices would be folded onto an end face; on the box's top corner that made a vertex that is not a
+    number), the input untouched. On the top face 1.8 mm from the rim (inside what the 3 mm round
     replaces, as in the CAD fillet): the hole goes with it, the result watertight. On the wall 4 mm down (beyond
     the new round): the hole is kept as it was, its three edges the result's only boundary."""
     V, F = reference.mesh_arrays(rim_mesh("fine"))
