@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Builds the libFuzzer targets (clang-14, ASan + UBSan) into build-fuzz/ and runs each for SECONDS
-# (default 60): fuzz_round (the engine on generated meshes), fuzz_arrays (raw arrays at the
-# boundary) and fuzz_decks (the solver-deck readers and writer). Prints executions, corpus size, coverage (cov / ft) and findings of each; exits non-zero
+# (default 60): fuzz_round (the engine on generated meshes), fuzz_reround (change_radius on their rounded
+# results), fuzz_arrays (raw arrays at the boundary) and fuzz_decks (the solver-deck readers and writer). Prints executions, corpus size, coverage (cov / ft) and findings of each; exits non-zero
 # when a target found a crash, a sanitizer report, an invariant break or a timeout (> 10 s per input).
 #   tools/fuzz.sh [SECONDS] [TARGET...]     corpora and findings: fuzz-out/<target>/
 # A finding is replayed with:  build-fuzz/tests/fuzz/<target> fuzz-out/<target>/artifacts/<file>
@@ -13,7 +13,7 @@ ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 SECONDS_EACH="${1:-60}"
 shift || true
 TARGETS=("$@")
-((${#TARGETS[@]})) || TARGETS=(fuzz_round fuzz_arrays fuzz_decks)
+((${#TARGETS[@]})) || TARGETS=(fuzz_round fuzz_reround fuzz_arrays fuzz_decks)
 BUILD="$ROOT/build-fuzz"
 JOBS="${MESHROUND_FUZZ_BUILD_JOBS:-2}"
 
@@ -33,15 +33,17 @@ for t in "${TARGETS[@]}"; do
     cp -n "$ROOT"/tests/fuzz/deck_seeds/* "$ROOT"/tests/fuzz/regressions/decks/*/* "$out/corpus/" 2>/dev/null || true
   fi
   [ -n "$(ls -A "$out/corpus")" ] || python3 "$ROOT/tests/fuzz/make_corpus.py" "$out/corpus" 48
-  # Past findings (fixed or not) stay in the corpus: they lead back to the places that broke.
-  [ -d "$ROOT/tests/fuzz/regressions" ] && [ "$t" = fuzz_round ] && cp -n "$ROOT"/tests/fuzz/regressions/*/* "$out/corpus/" 2>/dev/null || true
+  # Past findings that are fixed stay in the corpus: they lead back to the places that broke (the open ones
+  # are slow: a bounded pass would spend itself on them).
+  # (fuzz_reround decodes the same bytes as fuzz_round: the engine's findings seed it too.)
+  case "$t" in fuzz_round|fuzz_reround) cp -n "$ROOT"/tests/fuzz/regressions/round/fixed/* "$out/corpus/" 2>/dev/null || true ;; esac
   before=$(ls "$out/artifacts" | wc -l)
   log="$out/last.log"
   rc=0
   # fuzz_round: no leak pass. OCCT keeps caches across calls, so every input's mallocs and frees differ and
   # libFuzzer would run each input a second time looking for a leak (half the executions).
   extra=()
-  [ "$t" = fuzz_round ] && extra=(-detect_leaks=0)
+  case "$t" in fuzz_round|fuzz_reround) extra=(-detect_leaks=0) ;; esac
   "$BUILD/tests/fuzz/$t" -max_total_time="$SECONDS_EACH" -timeout=10 -rss_limit_mb=2048 -max_len=256 -print_final_stats=1 \
     "${extra[@]}" -artifact_prefix="$out/artifacts/" "$out/corpus" > "$log" 2>&1 || rc=$?
   execs=$(grep -o 'stat::number_of_executed_units: *[0-9]*' "$log" | grep -o '[0-9]*$' | tail -1 || true)

@@ -12,6 +12,7 @@
 #include "meshround/chain.h"
 #include "meshround/mesh.h"
 #include "meshround/round.h"
+#include "meshround/sharpen.h"
 #include "sound.h"
 
 namespace meshround::fuzz {
@@ -44,6 +45,23 @@ inline long fuzz_work_budget() {
   return budget;
 }
 
+// A case's body (its finding, or ""), where a RoundingError is a refusal for `refused` to judge and any other
+// exception that escapes is a finding.
+template <class Body, class Refused>
+std::string guarded(Body&& body, Refused&& refused) {
+  try {
+    return body();
+  } catch (const RoundingError& e) {
+    return refused(e);
+  } catch (const Standard_Failure& e) {
+    return std::string("Standard_Failure escaped: ") + e.DynamicType()->Name() + ": " + e.GetMessageString();
+  } catch (const std::exception& e) {
+    return std::string("std::exception escaped: ") + e.what();
+  } catch (...) {
+    return "unknown exception escaped";
+  }
+}
+
 // A generated mesh and options (fuzz_input.h) through round_edges; a success must be sound (sound.h)
 // and leave the input arrays as they were.
 inline std::string round_case(const std::uint8_t* data, std::size_t size) {
@@ -58,7 +76,7 @@ inline std::string round_case(const std::uint8_t* data, std::size_t size) {
                  c.options.feature_angle_deg, c.options.reach);
   if (verbose())
     for (const Vec3& p : c.seeds) std::fprintf(stderr, "seed %.17g %.17g %.17g\n", p.x(), p.y(), p.z());
-  try {
+  return guarded([&]() -> std::string {
     dump_obj(c.V, c.F, "_in.obj");
     const RoundResult res = round_edges(c.V, c.F, c.seeds, c.options);
     dump_obj(res.vertices, res.triangles, "_out.obj");
@@ -79,18 +97,64 @@ inline std::string round_case(const std::uint8_t* data, std::size_t size) {
       for (const auto& [pass, t] : res.report.seconds) std::fprintf(stderr, " %s %.3f", pass.c_str(), t);
       std::fprintf(stderr, "\n");
     }
-    if (!bad.empty()) return "unsound result: " + bad;
-  } catch (const RoundingError& e) {
+    return bad.empty() ? "" : "unsound result: " + bad;
+  }, [&](const RoundingError& e) -> std::string {
     if (verbose()) std::fprintf(stderr, "refused (%s): %s\n", error_code_name(e.code), e.what());
     if (!(c.V.array() == V0.array()).all() && !(c.V.hasNaN() && V0.hasNaN())) return "the input vertices changed";
-  } catch (const Standard_Failure& e) {
-    return std::string("Standard_Failure escaped: ") + e.DynamicType()->Name() + ": " + e.GetMessageString();
-  } catch (const std::exception& e) {
-    return std::string("std::exception escaped: ") + e.what();
-  } catch (...) {
-    return "unknown exception escaped";
-  }
-  return "";
+    return "";
+  });
+}
+
+// round_case's call, then, where it rounds, change_radius on its result through the same seeds, at a radius
+// the input's last byte picks (0: sharpen; or 0.5, 0.8, 1, 1.25 or 2 times the first): a success must be sound
+// against the rounded mesh and leave it as it was, a failure a RoundingError.
+inline std::string reround_case(const std::uint8_t* data, std::size_t size) {
+  FuzzCase c = decode_case(data, size);
+  if (fuzz_work_budget() > 0) c.options.max_new_facets = std::min(c.options.max_new_facets, fuzz_work_budget());
+  if (c.F.rows() > 6000) return "";
+  static constexpr double kFactor[6] = {0, 0.5, 0.8, 1, 1.25, 2};
+  const double factor = kFactor[size ? data[size - 1] % 6 : 0];
+  return guarded([&]() -> std::string {
+    RoundResult first;
+    const auto start = std::chrono::steady_clock::now();
+    auto seconds = [&start] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(); };
+    try {
+      first = round_edges(c.V, c.F, c.seeds, c.options);
+    } catch (const RoundingError&) {
+      return "";  // (round_case's to judge)
+    }
+    const Points V1 = first.vertices;
+    const Triangles F1 = first.triangles;
+    RoundOptions again = c.options;
+    again.radius = factor * c.options.radius, again.radius_law.clear();
+    if (verbose()) std::fprintf(stderr, "rounded (%ld facets, %.2f s); change_radius to %g\n", long(F1.rows()), seconds(), again.radius);
+    const ChangeRadiusResult res = change_radius(first.vertices, first.triangles, c.seeds, again);
+    dump_obj(V1, F1, "_in.obj"), dump_obj(res.round.vertices, res.round.triangles, "_out.obj");
+    if (!(first.vertices.array() == V1.array()).all() || !(first.triangles.array() == F1.array()).all()) return "the input changed";
+    SoundnessInput s{V1, F1, res.round.vertices, res.round.triangles, {}, 0};
+    double r = again.radius;
+    for (const StripReport& strip : res.strips) {
+      s.chain_ends.push_back(strip.corner[0]), s.chain_ends.push_back(strip.corner[1]);
+      r = std::max(r, strip.found_radius);
+    }
+    for (const RoundedChain& ch : res.round.chains)
+      if (!ch.chain.empty()) s.chain_ends.push_back(ch.chain.front()), s.chain_ends.push_back(ch.chain.back());
+    s.end_allowance = 1.5 * c.options.reach * r;
+    const double made = seconds();
+    const std::string bad = check_sound(s);
+    if (verbose())
+      std::fprintf(stderr, "made again: %ld facets at %.2f s, %s (checked at %.2f s)\n", long(res.round.triangles.rows()), made,
+                   bad.empty() ? "sound" : bad.c_str(), seconds());
+    if (verbose()) {
+      std::fprintf(stderr, "sharpen %.3f s; rounding seconds:", res.seconds_sharpen);
+      for (const auto& [pass, t] : res.round.report.seconds) std::fprintf(stderr, " %s %.3f", pass.c_str(), t);
+      std::fprintf(stderr, "\n");
+    }
+    return bad.empty() ? "" : "unsound result of change_radius: " + bad;
+  }, [](const RoundingError& e) -> std::string {
+    if (verbose()) std::fprintf(stderr, "change_radius refused (%s): %s\n", error_code_name(e.code), e.what());
+    return "";
+  });
 }
 
 inline double coordinate(ByteReader& in) {
@@ -123,7 +187,7 @@ inline std::string arrays_case(const std::uint8_t* data, std::size_t size) {
   const double angle = in.chance(200) ? 30 : (in.chance(128) ? in.uniform(0, 180) : in.raw_double());
   const double search = in.chance(128) ? 0 : (in.chance(200) ? in.uniform(0, 10) : in.raw_double());
   const bool round = in.chance(48);
-  try {
+  return guarded([&]() -> std::string {
     const MeshTopology mesh(V, F);
     for (int f = 0; f < mesh.num_facets(); ++f) {
       (void)mesh.facet_normal(f), (void)mesh.facet_degenerate(f);
@@ -152,15 +216,8 @@ inline std::string arrays_case(const std::uint8_t* data, std::size_t size) {
         if (!(F.array() == F0.array()).all()) return "the input facets changed";
       }
     }
-  } catch (const RoundingError&) {
-  } catch (const Standard_Failure& e) {
-    return std::string("Standard_Failure escaped: ") + e.GetMessageString();
-  } catch (const std::exception& e) {
-    return std::string("std::exception escaped: ") + e.what();
-  } catch (...) {
-    return "unknown exception escaped";
-  }
-  return "";
+    return "";
+  }, [](const RoundingError&) { return std::string(); });
 }
 
 }  // namespace meshround::fuzz
