@@ -45,6 +45,7 @@ TEST(FuzzRegressions, DecksFixed) { replay("decks/fixed", meshround::fuzz::deck_
 // Open findings (listed in tests/fuzz/regressions/README.md): unsound results, sanitizer reports, hangs.
 TEST(FuzzRegressions, DISABLED_RoundOpen) { replay("round/open", meshround::fuzz::round_case); }
 TEST(FuzzRegressions, DISABLED_ArraysOpen) { replay("arrays/open", meshround::fuzz::arrays_case); }
+TEST(FuzzRegressions, DISABLED_ReroundOpen) { replay("reround/open", meshround::fuzz::reround_case); }
 
 // The fuzzer's soundness check accepts a good rounding (the standard box edge) and catches a hole, a
 // fold and a crossing made in it.
