@@ -111,7 +111,8 @@ constexpr double kSnapKeepsAngle = 10 * M_PI / 180;  // a vertex snapped onto th
 constexpr double kSnapShare = 0.25;  // x its shortest edge: a vertex that near the plane moves onto it
 constexpr double kSlideOffPlane = 1e-4;   // x the chain edge's length: how far a vertex slid along the chain may leave
                                           // its facets' planes
-constexpr double kSlideKeepsAngle = 0.5;  // x min(kSnapKeepsAngle, its own): the smallest angle a slid vertex's facets keep
+constexpr double kSlideKeepsAngle = 0.5;  // x min(kSnapKeepsAngle, its own): the smallest angle kept by the facets of a vertex
+                                          // slid along the chain or moved onto the band's corner
 constexpr double kSideShare = 0.01;  // x a side's length: how near its ends a corner is that end vertex's
 constexpr double kSideSplitShare = 0.15;  // x a side's length: a corner that near a flat side (not near its ends)
                                           // may split that side (insert_corner)
@@ -152,10 +153,12 @@ int insert_corner(SplitMesh& m, const MeshTopology& mesh, std::vector<int>& face
     const Vec3 n0 = mesh.facet_normal(*mesh.facets_begin(near));
     for (const int* g = mesh.facets_begin(near); g != mesh.facets_end(near); ++g) flat &= mesh.facet_normal(*g).dot(n0) > 1 - 1e-6;
     for (int w : mesh.vertex_neighbours(near)) shortest = std::min(shortest, (m.points[w] - m.points[near]).norm());
-    // (Only where its facets keep their shapes: on a sharpened rim the corner lay on an edge in the mitre's
-    // plane, and a crease vertex 0.02 mm off the plane moved onto it flattened the facet on that edge.)
+    // (Only where its facets keep half their smallest angles: on a sharpened rim the corner lay on an edge in
+    // the mitre's plane, and a crease vertex 0.02 mm off the plane moved onto it flattened the facet on that
+    // edge. Not all of them: a sharpened CAD rim's crease vertex 0.03 mm from the corner, among slivers, was
+    // left beside it, and the trim's facets between it and the contact line had no area.)
     if (flat && std::abs((q - m.points[near]).dot(n0)) <= slack && near_d <= kSnapShare * shortest &&
-        move_keeps_shape(m, mesh, near, q, 1.0, INFINITY)) {
+        move_keeps_shape(m, mesh, near, q, kSlideKeepsAngle, INFINITY)) {
       m.points[near] = q;
       return near;
     }
