@@ -76,6 +76,7 @@ struct EndSegment {
 std::vector<EndSegment> end_segments(const MeshTopology& mesh, const SharpChain& chain, const BaseMeshes& base,
                                      const std::vector<ProfileStation>& stations, const RoundingSurface& surface);
 // The split as a delta of `mesh` (mesh_delta.h); returns false (delta untouched) when there is nothing to split.
-bool split_along_end_segments(const MeshTopology& mesh, const std::vector<EndSegment>& segments, MeshDelta& delta);
+// A vertex on the plane within `weld` of a segment's corner is that corner.
+bool split_along_end_segments(const MeshTopology& mesh, const std::vector<EndSegment>& segments, double weld, MeshDelta& delta);
 
 }  // namespace meshround

@@ -24,7 +24,10 @@ namespace meshround {
 
 constexpr double kDegenerateDeg = 0.01;  // smallest angle of a sound facet (the yardstick's own)
 constexpr double kWeldShare = 0.01;      // x the tolerance: two points this near are one (a snap target beside a
-                                         // neighbour; two rounds' end columns at a mitre)
+                                         // neighbour)
+constexpr double kCornerWeldShare = 0.2; // x the tolerance: a round's end points this near are one -- two rounds'
+                                         // end columns at a mitre, each from its own balls (round.cpp); the band's
+                                         // corner and a vertex on its end plane (ends.cpp insert_corner)
 
 // `reach`: the largest distance from the chain at which the rounding may place a point; `tolerance`: the
 // chordal tolerance (how far the round's end profile may stand off an end face). `network`: the other

@@ -283,7 +283,7 @@ RoundedChain round_one_chain(const MeshTopology& mesh, const ChainSeed& seed, co
   timer.done("surface");
   if (!split) {  // a base mesh going on past an end face's plane: split along the band's corner, round that
     MeshDelta split_delta;
-    if (split_along_end_segments(mesh, end_segments(mesh, chain, base, stations, surface), split_delta)) {
+    if (split_along_end_segments(mesh, end_segments(mesh, chain, base, stations, surface), kCornerWeldShare * tol, split_delta)) {
       Points V_split;
       Triangles F_split;
       StepOrigin from_split;
@@ -337,9 +337,11 @@ RoundedChain round_one_chain(const MeshTopology& mesh, const ChainSeed& seed, co
   // solved (drafted walls) they agree to about 1e-6 r, far closer than any two points of a column. Faces
   // flat only to a mesher's float precision move the balls apart more: a box's top edges sharpened from a
   // MeshPart mesh of their rounds (its contact vertices 3e-5 mm off the top face) gave columns 1e-3 of the
-  // tolerance apart at r = 3, 4 and 6. The weld (guard.h kWeldShare of the tolerance) is still far below a
-  // column's spacing.
-  const double weld = kWeldShare * tol;
+  // tolerance apart at r = 3, 4 and 6; made again at its own 5 mm, 0.057 of it: a ball moves by r times the
+  // tilt of the facet it touches, and a sharpened face keeps the old round's vertices 0.018 mm from its
+  // contact line 3e-5 mm off the face (on the old cylinder), which tilts their facets by 0.1 deg. The weld
+  // (guard.h kCornerWeldShare of the tolerance) is still far below a column's spacing.
+  const double weld = kCornerWeldShare * tol;
   shared.vertex_at = [&](const Vec3& p) {
     for (const auto& [q, v] : earlier_points)
       if ((q - p).norm() <= weld) return v;

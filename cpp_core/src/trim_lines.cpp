@@ -257,18 +257,25 @@ VertexSide& SideTrim::exact(int v) {
   return s;
 }
 
+// Whether p, on a capped end's plane, is the band's corner there: within a corner weld of the surface's
+// corner (ends.cpp insert_corner takes a vertex that near for it); *u_end: that end's parameter.
+bool SideTrim::at_corner(const Vec3& p, double* u_end) const {
+  for (int end = 0; end < 2; ++end) {
+    if (!ctx.cuts[end] || std::abs(ctx.cuts[end]->past(p)) > ctx.plane_slack) continue;
+    *u_end = end ? ctx.surface.u_last : ctx.surface.u_first;
+    if ((ctx.surface.value(*u_end, side) - p).norm() <= std::max(ctx.plane_slack, kCornerWeldShare * opt.tolerance)) return true;
+  }
+  return false;
+}
+
 // The parameter of the band's corner p on a capped end's plane (the end profile's contact): the end's own.
 // Over a carried end's straight piece the contact line creeps up to the plane (0.07 mm over its last
 // 0.66 of u at a drafted pocket's wall corner), so the line's search from a vertex snapped there along the
 // end face's edge can stop short of the end; the inner rows span the trim lines' parameters and would stop
 // there too, below the plane, and the gap to the end face be sewn with tilted facets.
 double SideTrim::corner_u(const Vec3& p, double u) const {
-  for (int end = 0; end < 2; ++end) {
-    if (!ctx.cuts[end] || std::abs(ctx.cuts[end]->past(p)) > ctx.plane_slack) continue;
-    const double u_end = end ? ctx.surface.u_last : ctx.surface.u_first;
-    if ((ctx.surface.value(u_end, side) - p).norm() <= ctx.plane_slack) return u_end;
-  }
-  return u;
+  double u_end;
+  return at_corner(p, &u_end) ? u_end : u;
 }
 
 void SideTrim::classify_vertices() {
@@ -293,9 +300,17 @@ void SideTrim::classify_vertices() {
       }
       s.exact = true;
       s.d = distance(mesh.point(v), s_chain, &s.u, &away);
-      if (on_end_plane && std::abs(s.d) <= ctx.plane_slack) s.d = 0;  // the band's corner (ends.h: a vertex)
+      // The band's corner (ends.h: a vertex; within a corner weld of the surface's, insert_corner's pick).
+      double u_end;
+      if (on_end_plane && (std::abs(s.d) <= ctx.plane_slack || at_corner(mesh.point(v), &u_end))) s.d = 0;
       if (ctx.chain_vertices.count(v)) s.d = std::min(s.d, -1e-9);  // (past a capped end's plane: kFar above)
-      else if (std::abs(s.d) > 0 && !edit.moved.count(v)) snap_near_line(v, s, away, on_end_plane);
+      else if (std::abs(s.d) > 0 && !edit.moved.count(v)) {
+        snap_near_line(v, s, away, on_end_plane);
+        // Not moved but within a weld of the line (a sliver beside it would flatten): on the line where it is.
+        // (A round made again at its own radius: its contact line runs 2e-5 mm from the old contact vertices,
+        // and the cut facets' points 3e-5 mm from them made facets of no area.)
+        if (std::abs(s.d) <= kWeldShare * opt.tolerance) s.d = 0;
+      }
       if (on_end_plane && s.d == 0) s.u = corner_u(edit.point(v), s.u);
       vs[v] = s;
       if (s.d == 0) out.line[side].push_back({v, s.u});

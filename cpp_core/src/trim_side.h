@@ -94,6 +94,7 @@ class SideTrim {
   double behind_end(const Vec3& p) const;
   double distance(const Vec3& p, double u_hint, double* u_out, Vec3* away = nullptr) const;
   double u_on_line(const Vec3& q, double u_a, double u_b, double w0) const;
+  bool at_corner(const Vec3& p, double* u_end) const;
   double corner_u(const Vec3& p, double u) const;
   bool reenters(const Vec3& from, const Vec3& to, double u) const;
   double line_bend(double u, double L) const;

@@ -124,9 +124,11 @@ def test_new_radius_against_occt(name, variant, which):
     assert_sound_and_local(row)
 
 
-def assert_original_radius_returns_the_input(old, mesh, r0, variant):
+def assert_original_radius_returns_the_input(old, mesh, r0):
     """Sharpened, then rounded at the radius found: within 0.01 r of OCCT's fillet at r0 both ways, and within the
-    tolerance plus the input's own chordal error of the input mesh itself."""
+    tolerance plus the input's own chordal error of the input mesh itself (measured: the exact rounds' farthest
+    point from the input's facets near the chain; MeshPart's 2 mm mesh of the box spans the 5 mm round in chords
+    of 30 deg, which sag 0.118 mm, more than its element length makes one expect)."""
     found = MeshRound.change_radius(mesh, [seed_on_round(old)], 0).report["found_radius"][0]
     res = MeshRound.change_radius(mesh, [seed_on_round(old)], found)
     row = reference.score(old, mesh, res.mesh, res.report)
@@ -137,18 +139,17 @@ def assert_original_radius_returns_the_input(old, mesh, r0, variant):
     chain = reference.Chain(old)
     P = reference.surface_samples(V1, F1)
     P = P[chain.distance(P) <= 2 * r0]
-    own = reference.TriangleSet(V0, F0, 0.2 * r0).distance(P).max()
-    if variant == "cad":
-        sag = CAD_MESH["LinearDeflection"]  # the tessellation's own chordal deflection
-    else:
-        sag = r0 * (1 - math.cos(math.asin(min(1.0, MAX_LENGTH[variant] / 2))))  # an input chord's sag on the round
-    assert own <= r0 / 100 + sag + reference.MEASURE * r0
+    input_facets = reference.TriangleSet(V0, F0, 0.2 * r0)
+    own = input_facets.distance(P).max()
+    geo = reference.exact_geometry(old, 3.0)
+    sag = input_facets.distance(geo["rounds"]).max()  # the input's own chordal error on its rounds
+    assert own <= r0 / 100 + sag + reference.MEASURE * r0, (own, sag)
 
 
 @pytest.mark.parametrize("name,variant", [("box", "coarse"), ("lchannel", "coarse"), ("draft_shoulder", "fine"), ("lchannel", "cad")])
 def test_sharpen_then_original_radius_returns_the_input(name, variant):
     r0 = SHAPES[name][1]
-    assert_original_radius_returns_the_input(case_at(name, r0), rounded_mesh(name, variant), r0, variant)
+    assert_original_radius_returns_the_input(case_at(name, r0), rounded_mesh(name, variant), r0)
 
 
 def elliptic_blend():
