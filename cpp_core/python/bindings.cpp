@@ -374,6 +374,7 @@ py::dict strip_dict(const StripReport& s) {
   d["border_vertices"] = py::make_tuple(s.border_vertices[0], s.border_vertices[1]);
   d["end_faces"] = s.end_faces, d["facets_split"] = s.facets_split, d["end_facets_remeshed"] = s.end_facets_remeshed;
   d["points_merged"] = s.points_merged;
+  d["border_flips"] = s.border_flips;
   d["recognised"] = s.recognised;
   return d;
 }

@@ -323,6 +323,7 @@ StripReport sharpen_one(const MeshTopology& mesh, const Vec3& seed, const Sharpe
     if (strip.ends[e].face) ++rep.end_faces, rep.end_facets_remeshed += remesh_end(mesh, strip, e, rep.found_radius, o.flat_deg, edit, fold);
   rep.points_merged = sharpen_detail::merge_close_points(mesh, strip, rep.found_radius, edit, fold);
   if (strip.mitred) sharpen_detail::drop_flat_facets(mesh, strip, edit);
+  rep.border_flips = sharpen_detail::unkink_borders(mesh, strip, edit);
   const SharpChain chain = corner_chain(strip);
   check_result(edit, chain, changed_reach(edit, chain) * 1.001 + 1e-9, fold.setback);
   write_mesh(edit, V_out, F_out, origin);

@@ -180,3 +180,88 @@ int drop_flat_facets(const MeshTopology& mesh, const RoundStrip& strip, MeshEdit
 }
 
 }  // namespace meshround::sharpen_detail
+
+namespace meshround::sharpen_detail {
+
+// A kink at an old border edge smaller than this is left (the edge runs along the round: the side's facets
+// above and below it share their chords of a wall curved in plan, so a larger turn there is a sliver's); the
+// flip must take off a quarter of it at least.
+constexpr double kKinkDeg = 5;
+constexpr double kKinkKept = 0.75;
+
+int unkink_borders(const MeshTopology& mesh, const RoundStrip& strip, MeshEdit& edit) {
+  auto border_side = [&](int v) {
+    const auto it = strip.role.find(v);
+    return it == strip.role.end() ? -1 : it->second == StripRole::BorderA ? 0 : it->second == StripRole::BorderB ? 1 : -1;
+  };
+  // The live facets at the border vertices: input facets kept (whole or folded) and new ones (slot -1 - i).
+  std::unordered_map<int, std::vector<int>> at;
+  for (size_t i = 0; i < edit.added.size(); ++i)
+    for (int v : edit.added[i])
+      if (border_side(v) >= 0) at[v].push_back(-1 - int(i));
+  for (const auto& [v, role] : strip.role)
+    if (role == StripRole::BorderA || role == StripRole::BorderB)
+      for (const int* f = mesh.facets_begin(v); f != mesh.facets_end(v); ++f)
+        if (!edit.removed.count(*f)) at[v].push_back(*f);
+  auto corners = [&](int slot) {
+    return slot < 0 ? edit.added[size_t(-1 - slot)] : std::array<int, 3>{mesh.F(slot, 0), mesh.F(slot, 1), mesh.F(slot, 2)};
+  };
+  auto normal = [&](const std::array<int, 3>& t) {
+    return Vec3((edit.point(t[1]) - edit.point(t[0])).cross(edit.point(t[2]) - edit.point(t[0])));
+  };
+  auto turn = [](const Vec3& m, const Vec3& n) { return std::atan2(m.cross(n).norm(), m.dot(n)) * 180 / M_PI; };
+  auto least = [&](const std::array<int, 3>& t) { return smallest_angle(edit.point(t[0]), edit.point(t[1]), edit.point(t[2])); };
+  std::unordered_set<std::uint64_t> edges;  // every live edge at the border (a flip may not make one twice)
+  for (const auto& [v, slots] : at)
+    for (int slot : slots) {
+      const auto t = corners(slot);
+      for (int k = 0; k < 3; ++k) edges.insert(edge_key(t[size_t(k)], t[size_t(k + 1) % 3]));
+    }
+  std::unordered_set<int> gone;  // slots flipped away
+  int flipped = 0;
+  for (const int f : strip.facets)
+    for (int k = 0; k < 3; ++k) {
+      const int a = mesh.F(f, k), b = mesh.F(f, (k + 1) % 3);
+      if (border_side(a) < 0 || border_side(a) != border_side(b) || !at.count(a)) continue;
+      std::vector<int> pair;  // the two live facets on (a, b)
+      for (int slot : at[a]) {
+        const auto t = corners(slot);
+        if (!gone.count(slot) && std::count(t.begin(), t.end(), b)) pair.push_back(slot);
+      }
+      if (pair.size() != 2) continue;
+      std::array<int, 3> one = corners(pair[0]), two = corners(pair[1]);
+      // one runs a -> b: its third corner c; two runs b -> a: its third d.
+      auto rotate_to = [](std::array<int, 3>& t, int first) {
+        while (t[0] != first) std::rotate(t.begin(), t.begin() + 1, t.end());
+      };
+      rotate_to(one, a), rotate_to(two, a);
+      if (one[1] != b) std::swap(one, two), std::swap(pair[0], pair[1]), rotate_to(one, a), rotate_to(two, a);
+      if (one[1] != b || two[2] != b) continue;  // not one orientation
+      const int c = one[2], d = two[1];
+      const double before = turn(normal(one), normal(two));
+      if (before < kKinkDeg || edges.count(edge_key(c, d))) continue;
+      const std::array<int, 3> three{a, d, c}, four{d, b, c};
+      const Vec3 n3 = normal(three), n4 = normal(four), n_old = normal(one).normalized() + normal(two).normalized();
+      if (!(n3.dot(n_old) > 0 && n4.dot(n_old) > 0) || turn(n3, n4) > kKinkKept * before ||
+          std::min(least(three), least(four)) < std::min(least(one), least(two)))
+        continue;
+      for (int slot : pair) {
+        gone.insert(slot);
+        if (slot >= 0) edit.removed.insert(slot);
+      }
+      edit.added.push_back(three), edit.added.push_back(four);
+      for (int v : three) at[v].push_back(-int(edit.added.size()) + 1);
+      for (int v : four) at[v].push_back(-int(edit.added.size()));
+      edges.erase(edge_key(a, b)), edges.insert(edge_key(c, d));
+      ++flipped;
+    }
+  // The added facets flipped away go (their slots are indices into edit.added: erased from the back).
+  std::vector<int> dead;
+  for (int slot : gone)
+    if (slot < 0) dead.push_back(-1 - slot);
+  std::sort(dead.rbegin(), dead.rend());
+  for (int i : dead) edit.added.erase(edit.added.begin() + i);
+  return flipped;
+}
+
+}  // namespace meshround::sharpen_detail

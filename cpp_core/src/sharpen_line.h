@@ -25,4 +25,11 @@ int merge_close_points(const MeshTopology& mesh, const RoundStrip& strip, double
 // made one); returns how many.
 int drop_flat_facets(const MeshTopology& mesh, const RoundStrip& strip, MeshEdit& edit);
 
+// A side's facet beside the old round that folds against it (a mesher's sliver along the contact line on a
+// curved wall: its three corners on the wall, but its plane tilted by the wall's sag across its short height)
+// makes a kink on the rebuilt side where there was the round's turn; the edge between the two is flipped
+// when that takes off a quarter of the kink or more without a worse angle (round_edges reads a kink of 30 deg as a sharp edge and
+// its ball as reaching past it). Returns how many edges were flipped.
+int unkink_borders(const MeshTopology& mesh, const RoundStrip& strip, MeshEdit& edit);
+
 }  // namespace meshround::sharpen_detail

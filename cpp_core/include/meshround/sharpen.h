@@ -58,6 +58,7 @@ struct StripReport {
   int strip_facets = 0, measured_vertices = 0, border_vertices[2] = {0, 0};
   int end_faces = 0, facets_split = 0, end_facets_remeshed = 0;
   int points_merged = 0;               // points on the rebuilt edge merged into a too-close neighbour
+  int border_flips = 0;                // edges at the old contact lines flipped to take out a kink (a sliver's)
   std::string recognised;              // how the strip was told from its sides (for the report)
 };
 
