@@ -122,13 +122,17 @@ void flood_curved(const MeshTopology& mesh, Facets& fx, int f0, const SharpenOpt
   auto side_of = [&](int g) { return pass.side_of(fx, strip, g); };
   auto& border_b = pass.border_b;
   auto& border_edges = pass.border_edges;
-  auto along_round = [&](int g, int f) {  // g's longest side runs along the round at strip facet f (within 45 deg)
-    Vec3 axis = strip.normal[0].cross(fx.normal(f)), longest = Vec3::Zero();
-    for (int k = 0; k < 3; ++k) {
-      const Vec3 side = mesh.corner(g, (k + 1) % 3) - mesh.corner(g, k);
-      if (side.squaredNorm() > longest.squaredNorm()) longest = side;
-    }
-    return axis.norm() > 0.1 && std::abs(axis.normalized().dot(longest.normalized())) > std::sqrt(0.5);
+  // Cap g met by the strip at its apex (edge (a, b) of strip facet f is not g's longest side), with a side's
+  // facet across its longest side that turns by less than strip_turn_deg from f: g lies between the round
+  // and that side.
+  auto cap_between = [&](int g, int f, int a, int b) {
+    int k = 0;
+    for (int j = 1; j < 3; ++j)
+      if ((mesh.corner(g, j) - mesh.corner(g, (j + 1) % 3)).squaredNorm() > (mesh.corner(g, k) - mesh.corner(g, (k + 1) % 3)).squaredNorm()) k = j;
+    const int p = mesh.F(g, k), q = mesh.F(g, (k + 1) % 3);
+    if ((p == a && q == b) || (p == b && q == a)) return false;
+    const int h = fx.across(g, k);
+    return h >= 0 && !strip.facet_set.count(h) && !fx.cap(h) && side_of(h) >= 0 && fx.smooth(f, h);
   };
   flood_from(mesh, fx, f0, o, strip, [&](int f, int k, int g) {
     const int a = mesh.F(f, k), b = mesh.F(f, (k + 1) % 3);
@@ -138,13 +142,14 @@ void flood_curved(const MeshTopology& mesh, Facets& fx, int f0, const SharpenOpt
     // seam's facet with its corners nearly in a line, between a round's straight part and its torus around
     // a wall corner, its normal 130 degrees off its neighbours' -- the turn is measured from the strip's
     // facets beside the cap instead)
-    // A cap lying along the round joins the strip whatever its normal, which says nothing: a mesher's caps
-    // along the contact line, two corners on it and the third 0.009 mm up the round, face up to 124 deg from
-    // side A. Taken as side B, the border ran through that third corner and its station's wall plane leaned
-    // by the cap's normal (the corner line 2 mm off in plan); turning by more than strip_turn_deg from the
-    // round beside it, one was taken for an end face mid-strip. (A cap across the round, on an end face's
-    // seam with it, is left to the rules below: the end face lies beyond it.)
-    if (g >= 0 && fx.cap(g) && along_round(g, f)) return true;
+    // A cap between the round and a side joins the strip whatever its normal, which says nothing: a mesher's
+    // caps along the contact line, their longest side on it and the apex 0.009 mm up the round, face up to
+    // 124 deg from side A. Taken as side B, the border ran through the apex and its station's wall plane
+    // leaned by the cap's normal (the corner line 2 mm off in plan); turning by more than strip_turn_deg from
+    // the round beside it, one was taken for an end face mid-strip. (A cap on an end face's seam with the
+    // round has the end face across its longest side, turning by 90 deg from the round: left to the rules
+    // below.)
+    if (g >= 0 && fx.cap(g) && cap_between(g, f, a, b)) return true;
     if (g >= 0 && side < 0) {
       const double join = std::max(o.strip_turn_deg, kJoinDeg);
       if (angle_deg(fx.normal(f), fx.normal(g)) < join) return true;

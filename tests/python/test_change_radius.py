@@ -324,10 +324,10 @@ def test_s_chain_on_meshes_with_slivers_along_the_contact_line(max_length):
     contact with the wall (vertices 0.66 and 5.6 deg up the round), so some border vertices of the strip sit
     0.02 mm off the wall and their only wall facet is a 3.8 deg sliver whose normal is 1.4 deg off in plan.
     The 1.0 and 1.2 mm meshes were refused as not a round (radii 3.92-4.01 measured where the wall's plane was
-    taken through such a vertex); the 1.1 mm one ("it ends on a face that is not flat") until a cap beside the
-    strip lying along the round joined it (two corners on the contact line, the third 0.009 mm up the round:
-    its normal, 124 deg from the top face, made it an end face mid-strip, or a wall facet whose third corner
-    bent the wall's plane). Now: found within 1 % (3.9996 / 4.00003 / 3.9998 measured), made 6 mm within 0.01 r
+    taken through such a vertex); the 1.1 mm one ("it ends on a face that is not flat") until a mesher's cap
+    between the round and the wall joined the strip (its longest side on the contact line, its apex 0.009 mm
+    up the round: its normal, 124 deg from the top face, made it an end face mid-strip, or a wall facet whose
+    apex bent the wall's plane). Now: found within 1 % (3.9996 / 4.00003 / 3.9998 measured), made 6 mm within 0.01 r
     of OCCT's fillet both ways (0.0061 / 0.0064 / 0.0058 measured), sound and local."""
     old = s_case(S_R0)
     mesh = MeshPart.meshFromShape(Shape=old.reference, MaxLength=max_length)
