@@ -216,16 +216,18 @@ void SideTrim::grade_line_edges() {
     }
 }
 
-// q (in facet f's plane) a hair outside one of f's sides -- within kHairShare of the tolerance (the sag the
-// line's points are spaced for, refine_line_in_facet), with its corners where the snaps put them. (A line
-// that runs well outside a thin CAD facet and back, by 0.7 mm and more on the S chain's, is taken as it is.)
+// q (in facet f's plane) a hair outside one of f's sides -- within the tolerance, with its corners where the
+// snaps put them: the line's points are spaced for a sag of a quarter of it (refine_line_in_facet), so without
+// that point the line stays within it. (Within a quarter, kHairShare, a point 0.26 tolerances outside a
+// flipped facet of a sharpened wall folded its polygon, made again at its own radius. A line that runs well
+// outside a thin CAD facet and back, by 0.7 mm and more on the S chain's, is taken as it is.)
 bool SideTrim::hair_outside(int f, const Vec3& q) const {
   const Vec3 c[3] = {edit.point(mesh.F(f, 0)), edit.point(mesh.F(f, 1)), edit.point(mesh.F(f, 2))};
   const Vec3 n = (c[1] - c[0]).cross(c[2] - c[0]).normalized();
   for (int k = 0; k < 3; ++k) {
     const Vec3 edge = c[(k + 1) % 3] - c[k];
     const double beyond = -edge.cross(q - c[k]).dot(n) / edge.norm();  // > 0 outside this side
-    if (beyond > 0 && beyond <= hair) return true;
+    if (beyond > 0 && beyond <= opt.tolerance) return true;
   }
   return false;
 }
