@@ -219,15 +219,27 @@ void SideTrim::grade_line_edges() {
 // q (in facet f's plane) a hair outside one of f's sides -- within the tolerance, with its corners where the
 // snaps put them: the line's points are spaced for a sag of a quarter of it (refine_line_in_facet), so without
 // that point the line stays within it. (Within a quarter, kHairShare, a point 0.26 tolerances outside a
-// flipped facet of a sharpened wall folded its polygon, made again at its own radius. A line that runs well
-// outside a thin CAD facet and back, by 0.7 mm and more on the S chain's, is taken as it is.)
+// flipped facet of a sharpened wall folded its polygon, made again at its own radius.) Or outside a side
+// whose facet across is not cut (no corner in the band): nothing there follows the line, so the side stands
+// for it (on a sharpened wall made again at its own radius the line dips 0.044 mm below a row of old contact
+// vertices, onto the tilt of the wall's chords; the wall is where the row is). A line that runs well outside
+// a thin CAD facet and back into a facet that is cut, by 0.7 mm and more on the S chain's, is taken as it is.
 bool SideTrim::hair_outside(int f, const Vec3& q) const {
   const Vec3 c[3] = {edit.point(mesh.F(f, 0)), edit.point(mesh.F(f, 1)), edit.point(mesh.F(f, 2))};
   const Vec3 n = (c[1] - c[0]).cross(c[2] - c[0]).normalized();
+  auto uncut_across = [&](int k) {
+    const int a = mesh.F(f, k), b = mesh.F(f, (k + 1) % 3);
+    for (int g : mesh.edge_facets(a, b)) {
+      if (g == f) continue;
+      for (int j = 0; j < 3; ++j)
+        if (const auto it = vs.find(mesh.F(g, j)); it == vs.end() || it->second.d < 0) return false;
+    }
+    return true;
+  };
   for (int k = 0; k < 3; ++k) {
     const Vec3 edge = c[(k + 1) % 3] - c[k];
     const double beyond = -edge.cross(q - c[k]).dot(n) / edge.norm();  // > 0 outside this side
-    if (beyond > 0 && beyond <= opt.tolerance) return true;
+    if (beyond > 0 && (beyond <= opt.tolerance || uncut_across(k))) return true;
   }
   return false;
 }
