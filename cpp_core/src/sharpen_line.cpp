@@ -1,5 +1,6 @@
 // The rebuilt edge once a strip is folded (sharpen.cpp): points on it much closer than its spacing made
-// one, a mitre's corner one point, and the facets a fold left without area dropped.
+// one, a mitre's corner one point, and the facets a fold left without area dropped; and the old contact
+// lines, where a side's sliver folds against the rebuilt side, flipped smooth.
 #include "sharpen_line.h"
 
 #include <algorithm>
@@ -217,6 +218,11 @@ int unkink_borders(const MeshTopology& mesh, const RoundStrip& strip, MeshEdit& 
       const auto t = corners(slot);
       for (int k = 0; k < 3; ++k) edges.insert(edge_key(t[size_t(k)], t[size_t(k + 1) % 3]));
     }
+  auto input_edge = [&](int c, int d) {  // an input facet kept on (c, d), away from the border too
+    if (c >= mesh.num_vertices() || d >= mesh.num_vertices()) return false;
+    const std::vector<int> on = mesh.edge_facets(c, d);
+    return std::any_of(on.begin(), on.end(), [&](int g) { return !edit.removed.count(g); });
+  };
   std::unordered_set<int> gone;  // slots flipped away
   int flipped = 0;
   for (const int f : strip.facets)
@@ -239,7 +245,7 @@ int unkink_borders(const MeshTopology& mesh, const RoundStrip& strip, MeshEdit& 
       if (one[1] != b || two[2] != b) continue;  // not one orientation
       const int c = one[2], d = two[1];
       const double before = turn(normal(one), normal(two));
-      if (before < kKinkDeg || edges.count(edge_key(c, d))) continue;
+      if (before < kKinkDeg || edges.count(edge_key(c, d)) || input_edge(c, d)) continue;
       const std::array<int, 3> three{a, d, c}, four{d, b, c};
       const Vec3 n3 = normal(three), n4 = normal(four), n_old = normal(one).normalized() + normal(two).normalized();
       if (!(n3.dot(n_old) > 0 && n4.dot(n_old) > 0) || turn(n3, n4) > kKinkKept * before ||
