@@ -312,8 +312,10 @@ struct MitrePass {
     const double facet_tilt = std::sin(o.facet_tilt_deg * kDeg);
     double tilted = 0, total = 0;
     for (int f : flood) {
+      const auto piece = pieces.find(piece_of.at(f));
+      if (piece == pieces.end()) return false;  // a round whose vertices are all others' (a crease's): not mitred rounds
       total += fx.area(f);
-      if (std::abs(fx.normal(f).dot(pieces.at(piece_of.at(f)).frame.axis)) > facet_tilt) tilted += fx.area(f);
+      if (std::abs(fx.normal(f).dot(piece->second.frame.axis)) > facet_tilt) tilted += fx.area(f);
     }
     return tilted <= kTiltedArea * total;
   }

@@ -42,6 +42,7 @@ void replay(const std::string& dir, Case run) {
 TEST(FuzzRegressions, RoundFixed) { replay("round/fixed", meshround::fuzz::round_case); }
 TEST(FuzzRegressions, ArraysFixed) { replay("arrays/fixed", meshround::fuzz::arrays_case); }
 TEST(FuzzRegressions, DecksFixed) { replay("decks/fixed", meshround::fuzz::deck_case); }
+TEST(FuzzRegressions, ReroundFixed) { replay("reround/fixed", meshround::fuzz::reround_case); }
 // Open findings (listed in tests/fuzz/regressions/README.md): unsound results, sanitizer reports, hangs.
 TEST(FuzzRegressions, DISABLED_RoundOpen) { replay("round/open", meshround::fuzz::round_case); }
 TEST(FuzzRegressions, DISABLED_ArraysOpen) { replay("arrays/open", meshround::fuzz::arrays_case); }
