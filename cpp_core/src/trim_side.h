@@ -100,6 +100,7 @@ class SideTrim {
   double line_bend(double u, double L) const;
   bool edge_reenters(int v, const Vec3& q, double u_v) const;
   VertexSide& exact(int v);
+  bool closes_facet_on_line(int v) const;
   void snap_near_line(int v, VertexSide& s, const Vec3& away, bool on_end_plane);
   // Cutting (trim.cpp).
   void grade_piece(int trim_end, int kept_end, double u);
