@@ -216,7 +216,8 @@ void SideTrim::grade_line_edges() {
     }
 }
 
-// q (in facet f's plane) a hair outside one of f's sides -- within the tolerance, with its corners where the
+// True when refine point q (in facet f's plane) is left out, a side of f standing for the line there: q lies
+// outside one of f's sides within the tolerance, with its corners where the
 // snaps put them: the line's points are spaced for a sag of a quarter of it (refine_line_in_facet), so without
 // that point the line stays within it. (Within a quarter, kHairShare, a point 0.26 tolerances outside a
 // flipped facet of a sharpened wall folded its polygon, made again at its own radius.) Or outside a side
@@ -224,7 +225,7 @@ void SideTrim::grade_line_edges() {
 // for it (on a sharpened wall made again at its own radius the line dips 0.044 mm below a row of old contact
 // vertices, onto the tilt of the wall's chords; the wall is where the row is). A line that runs well outside
 // a thin CAD facet and back into a facet that is cut, by 0.7 mm and more on the S chain's, is taken as it is.
-bool SideTrim::hair_outside(int f, const Vec3& q) const {
+bool SideTrim::side_stands_for_line(int f, const Vec3& q) const {
   const Vec3 c[3] = {edit.point(mesh.F(f, 0)), edit.point(mesh.F(f, 1)), edit.point(mesh.F(f, 2))};
   const Vec3 n = (c[1] - c[0]).cross(c[2] - c[0]).normalized();
   auto uncut_across = [&](int k) {
@@ -288,7 +289,7 @@ void SideTrim::refine_line_in_facet(int f, int from, double u_from, int to, doub
     const Vec3 q = on_facet(u);
     // Where the line leaves a kept corner snapped onto it nearly along the facet's side, a point of it can
     // fall a hair outside the facet: it would fold the polygon back on that side. None there.
-    if (hair_outside(f, q)) continue;
+    if (side_stands_for_line(f, q)) continue;
     const int id = edit.add_point(q);
     out.line[side].push_back({id, u});
     polygon.push_back(id);

@@ -184,7 +184,7 @@ double SideTrim::u_on_line(const Vec3& q, double u_a, double u_b, double w0) con
 // facet next to it fall beyond the edge, and that polygon folds over (0.11 mm on the drafted pocket's CAD
 // mesh at r = 2.5, the edge 7.9 mm long). True if the band's edge, sampled along from -> to (densely near
 // `from`, where such a dip begins), comes back into the band by more than a hair after being out (or on it,
-// at `from`). A dip within a hair is left to hair_outside (trim.cpp).
+// at `from`). A dip within a hair is left to side_stands_for_line (trim.cpp).
 bool SideTrim::reenters(const Vec3& from, const Vec3& to, double u) const {
   const double length = (to - from).norm();
   if (!(length > 0)) return false;

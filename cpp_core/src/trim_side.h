@@ -106,7 +106,7 @@ class SideTrim {
   void grade_piece(int trim_end, int kept_end, double u);
   int cut_point(int a, int b);
   bool kept_whole(int g);
-  bool hair_outside(int f, const Vec3& q) const;
+  bool side_stands_for_line(int f, const Vec3& q) const;
   bool line_leaves_chord(int a, int b) const;
   void refine_line_in_facet(int f, int from, double u_from, int to, double u_to, std::vector<int>& polygon);
 

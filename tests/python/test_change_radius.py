@@ -124,6 +124,37 @@ def test_new_radius_against_occt(name, variant, which):
     assert_sound_and_local(row)
 
 
+@pytest.mark.parametrize("name,max_length", [("box", 1.0), ("lchannel", 0.3)])
+def test_a_round_whose_rows_end_a_hair_short_of_its_end_face(name, max_length):
+    """MeshPart ends a round's rows a hair short of its end face and joins the last row to the end arc by caps
+    (facets of 150 deg and more): the box's 5 mm round meshed at 5 mm (two elements across; its last row 0.16 mm
+    in, caps turned 28 deg off the end face) and the L channel's 4 mm round at 1.2 mm (0.02 mm in, caps turned
+    55 deg) were refused as not a round ("it ends on a face that is not flat", "it runs on smoothly") until such
+    caps were taken as the round's (strip.cpp end_cap). Found within 1 %, made larger against OCCT's fillet both
+    ways, sound and local."""
+    builder, r0, larger, smaller = SHAPES[name]
+    mesh = MeshPart.meshFromShape(Shape=case_at(name, r0).reference, MaxLength=max_length * r0)
+    res = MeshRound.change_radius(mesh, [seed_on_round(case_at(name, r0))], larger)
+    assert abs(res.report["found_radius"][0] - r0) <= FOUND_WITHIN["fine"] * r0, res.report["strips"][0]
+    row = reference.score(case_at(name, larger), mesh, res.mesh, res.report)
+    assert row["dev_out_to_ref"] <= DEVIATION and row["dev_ref_to_out"] <= DEVIATION, row
+    assert_sound_and_local(row)
+
+
+@pytest.mark.parametrize("name,max_length", [("box", 2.5), ("lchannel", 1.6), ("draft_shoulder", 1.6)])
+def test_a_round_one_element_across_is_refused_by_name(name, max_length):
+    """A round meshed one element across (MeshPart at 1.6-2.5 r0: the arc is one facet wide) has no radius to find:
+    refused with a coded error naming the place, the input unchanged. (These crashed the process: the end face
+    around the rebuilt corner had no facet meeting the round's end, and its empty outline was read.)"""
+    r0 = SHAPES[name][1]
+    mesh = MeshPart.meshFromShape(Shape=case_at(name, r0).reference, MaxLength=max_length * r0)
+    before = mesh.Topology
+    with pytest.raises(MeshRound.RoundingError) as err:
+        MeshRound.change_radius(mesh, [seed_on_round(case_at(name, r0))], SHAPES[name][2])
+    assert err.value.code in ("not_a_round", "result_invalid") and " at (" in str(err.value), str(err.value)
+    assert mesh.Topology == before
+
+
 def assert_original_radius_returns_the_input(old, mesh, r0, deviation=DEVIATION):
     """Sharpened, then rounded at the radius found: within 0.01 r of OCCT's fillet at r0 both ways, and within the
     tolerance plus the input's own chordal error of the input mesh itself (measured: the exact rounds' farthest
@@ -519,7 +550,7 @@ def test_a_rim_around_rounded_wall_corners_sharpened_then_made_at_its_own_radius
     plus the input's own chordal error of the input itself. Measured 0.0065 / 0.0064, 0.0186 / 0.0188 and 0.0050 /
     0.0051 r. Both MeshPart meshes were refused (facets crossing on the wall), where the new contact line runs
     along the rows of old contact vertices: on the 1.4 mm mesh a point of it fell 0.26 tolerances outside a
-    flipped sliver's facet (now left out within the tolerance; trim.cpp hair_outside, it was a quarter of it), on
+    flipped sliver's facet (now left out within the tolerance; trim.cpp side_stands_for_line, it was a quarter of it), on
     the 0.8 mm one it dipped 0.044 mm below such a row onto the tilt of the wall's chords, outside the facet it
     was cut in, into one that nothing cuts (now left out: that facet's side stands for it)."""
     h = 0.0 if variant == "cad" else MAX_LENGTH[variant] * RIM_R0
