@@ -245,10 +245,8 @@ int remesh_end(const MeshTopology& mesh, const RoundStrip& round, int e, double 
                           "patch (its outline touches itself); nothing was changed");
   }
   if (next.empty()) {  // no facet of the end face around a moved end vertex (a round one element across)
-    Vec3 at = frame.corner;
-    for (const auto& [v, end_v] : strip.end_of)
-      if (end_v == e) at = mesh.point(v);
-    if (!end.facets.empty()) at = (mesh.corner(end.facets[0], 0) + mesh.corner(end.facets[0], 1) + mesh.corner(end.facets[0], 2)) / 3;
+    const int g = end.facets.empty() ? -1 : end.facets[0];
+    const Vec3 at = g < 0 ? frame.corner : Vec3((mesh.corner(g, 0) + mesh.corner(g, 1) + mesh.corner(g, 2)) / 3);
     throw RoundingError(ErrorCode::ResultInvalid, "the end face at " + format_point(at) + " around the rebuilt corner was not "
                         "found (no facet of it meets the round's end); nothing was changed");
   }

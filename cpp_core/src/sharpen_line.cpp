@@ -180,7 +180,6 @@ int drop_flat_facets(const MeshTopology& mesh, const RoundStrip& strip, MeshEdit
   return dropped;
 }
 
-
 // A kink at an old border edge smaller than this is left (the edge runs along the round: the side's facets
 // above and below it share their chords of a wall curved in plan, so a larger turn there is a sliver's); the
 // flip must take off a quarter of it at least.

@@ -217,9 +217,8 @@ void SideTrim::grade_line_edges() {
 }
 
 // True when refine point q (in facet f's plane) is left out, a side of f standing for the line there: q lies
-// outside one of f's sides within the tolerance, with its corners where the
-// snaps put them: the line's points are spaced for a sag of a quarter of it (refine_line_in_facet), so without
-// that point the line stays within it. (Within a quarter, kHairShare, a point 0.26 tolerances outside a
+// outside one of f's sides within the tolerance, with its corners where the snaps put them: the line's points
+// are spaced for a sag of a quarter of it (refine_line_in_facet), so without that point the line stays within it. (Within a quarter, kHairShare, a point 0.26 tolerances outside a
 // flipped facet of a sharpened wall folded its polygon, made again at its own radius.) Or outside a side
 // whose facet across is not cut (no corner in the band): nothing there follows the line, so the side stands
 // for it (on a sharpened wall made again at its own radius the line dips 0.044 mm below a row of old contact
