@@ -189,7 +189,7 @@ void flood_strip(const MeshTopology& mesh, Facets& fx, int f0, const SharpenOpti
   if (side_of(f0) >= 0) not_a_round("the seed's facet lies on a flat face beside a round, not on the round", where);
   if (!on_strip(f0)) not_a_round("the seed's facet turns like neither side's nor the round's", where);
   std::unordered_set<int> end_caps;
-  flood_from(mesh, fx, f0, o, strip, [&](int f, int k, int g) {
+  flood_from(mesh, fx, f0, o, strip, end_edges, [&](int f, int k, int g) {
     const int a = mesh.F(f, k), b = mesh.F(f, (k + 1) % 3);
     if (g >= 0 && fx.smooth(f, g) && on_strip(g)) return true;
     const int side = g >= 0 ? side_of(g) : -1;

@@ -45,6 +45,12 @@ struct CurvedPasses {
     if (a > opening - std::max(fd2, 2 * spread)) return 1;
     return -1;
   }
+  // A facet turning clearly like neither side (twice side_of's margins off them): the round's own (a wall's
+  // chord, tilted by 1.5 deg, is near the wall's angle though side_of may not take it).
+  bool round_like(Facets& fx, const RoundStrip& strip, int g) const {
+    const double a = angle_deg(fx.normal(g), strip.normal[0]);
+    return a >= 2 * fd2 && a <= opening - 2 * std::max(fd2, 2 * spread);
+  }
 };
 
 // Plane A (strip.normal[0], offset[0]): the largest group of coplanar facets beside the flood, its plane
@@ -122,9 +128,10 @@ void flood_curved(const MeshTopology& mesh, Facets& fx, int f0, const SharpenOpt
   auto side_of = [&](int g) { return pass.side_of(fx, strip, g); };
   auto& border_b = pass.border_b;
   auto& border_edges = pass.border_edges;
-  // Cap g met by the strip at its apex (edge (a, b) of strip facet f is not g's longest side), with a side's
-  // facet across its longest side that turns by less than strip_turn_deg from f: g lies between the round
-  // and that side.
+  // Cap g met by the strip at its apex (edge (a, b) of strip facet f is not g's longest side), with a facet
+  // across its longest side that turns by less than strip_turn_deg from f: g lies between the round and a
+  // side, or inside the round (a mesher's folded sliver where the S plate's torus meets its cylinder, on its
+  // 3.5 mm mesh: its normal 88 deg off the round's, taken for the wall's and an end face mid-strip).
   auto cap_between = [&](int g, int f, int a, int b) {
     int k = 0;
     for (int j = 1; j < 3; ++j)
@@ -132,9 +139,20 @@ void flood_curved(const MeshTopology& mesh, Facets& fx, int f0, const SharpenOpt
     const int p = mesh.F(g, k), q = mesh.F(g, (k + 1) % 3);
     if ((p == a && q == b) || (p == b && q == a)) return false;
     const int h = fx.across(g, k);
-    return h >= 0 && !strip.facet_set.count(h) && !fx.cap(h) && side_of(h) >= 0 && fx.smooth(f, h);
+    if (h < 0 || fx.cap(h) || !fx.smooth(f, h)) return false;
+    if (side_of(h) >= 0) return !strip.facet_set.count(h);
+    // Inside the round: the facets across its longest side and its other short side are clearly the round's
+    // too (not a cap of an end face, its longest side on the end's seam with the round, nor one between the
+    // round and a tilted chord of the wall).
+    for (int j = 0; j < 3; ++j) {
+      const int u = mesh.F(g, j), w = mesh.F(g, (j + 1) % 3);
+      if (j == k || (u == a && w == b) || (u == b && w == a)) continue;
+      const int e = fx.across(g, j);
+      return e >= 0 && !fx.cap(e) && pass.round_like(fx, strip, e) && pass.round_like(fx, strip, h) && fx.smooth(f, e);
+    }
+    return false;
   };
-  flood_from(mesh, fx, f0, o, strip, [&](int f, int k, int g) {
+  flood_from(mesh, fx, f0, o, strip, end_edges, [&](int f, int k, int g) {
     const int a = mesh.F(f, k), b = mesh.F(f, (k + 1) % 3);
     const int side = g >= 0 ? side_of(g) : -1;
     // (a facet turning like neither side joins while it turns by less than kJoinDeg: a mesher's folded

@@ -78,9 +78,15 @@ class Facets {
 
 // The breadth-first flood of a strip's facets from f0 (each one's vertices Inner until told otherwise):
 // visit(f, k, g) decides for edge k of strip facet f, whose neighbour g (-1: the mesh boundary) is not in
-// the strip yet, whether g joins it (true), else records what the edge is.
+// the strip yet, whether g joins it (true), else records what the edge is (an end edge into `end_edges`).
+// An end edge to a cap (whose normal says nothing) that joined later, from another of its edges, is
+// dropped: the order of the flood must not make an end (a mesher's folded cap inside the S plate's round,
+// where its cylinder meets its torus, turns by 78 deg from one neighbour and 81 deg from the other: taken
+// for an end face mid-strip when met first from the second). (An end face's facet that joined through a
+// sliver of the round stays an end's too.)
 template <class Visit>
-void flood_from(const MeshTopology& mesh, Facets& fx, int f0, const SharpenOptions& o, RoundStrip& strip, Visit visit) {
+void flood_from(const MeshTopology& mesh, Facets& fx, int f0, const SharpenOptions& o, RoundStrip& strip,
+                std::vector<std::pair<int, int>>& end_edges, Visit visit) {
   strip.facet_set.insert(f0);
   std::deque<int> queue{f0};
   while (!queue.empty()) {
@@ -95,6 +101,12 @@ void flood_from(const MeshTopology& mesh, Facets& fx, int f0, const SharpenOptio
       if (visit(f, k, g)) strip.facet_set.insert(g), queue.push_back(g);
     }
   }
+  end_edges.erase(std::remove_if(end_edges.begin(), end_edges.end(),
+                                 [&](const std::pair<int, int>& e) {
+                                   const int g = fx.across(e.first, e.second);
+                                   return g >= 0 && fx.cap(g) && strip.facet_set.count(g);
+                                 }),
+                  end_edges.end());
 }
 
 // A strip whose side B curves along the round (strip_curved.cpp).
