@@ -250,6 +250,7 @@ py::dict result_dict(const RoundResult& res, bool arrays, bool with_delta) {
     d["profile_rows"] = r.profile_rows, d["gap_facets"] = r.gap_facets, d["open_gaps"] = r.open_gaps;
     d["edges_flipped"] = r.edges_flipped, d["vertices_removed"] = r.vertices_removed, d["vertices_slid"] = r.vertices_slid;
     d["thin_facets"] = r.thin_facets, d["reach_for_room"] = r.reach_for_room;
+    d["cusp_facets"] = r.cusp_facets, d["cusp_angle_deg"] = r.cusp_angle_deg;
     d["min_angle_at_reach_for_room"] = r.min_angle_at_reach_for_room;
     chain_reports.append(d);
   }
@@ -262,6 +263,7 @@ py::dict result_dict(const RoundResult& res, bool arrays, bool with_delta) {
   rep["min_input_angle_deg"] = r.min_input_angle_deg;
   rep["input_forces_small_angles"] = r.input_forces_small_angles;
   rep["thin_facets"] = r.thin_facets, rep["thin_facets_short_of_room"] = r.thin_facets_short_of_room;
+  rep["cusp_facets"] = r.cusp_facets, rep["cusp_angle_deg"] = r.cusp_angle_deg;
   rep["reach_for_room"] = r.reach_for_room;
   rep["seconds_total"] = r.seconds_total, rep["seconds_per_pass"] = r.seconds;
   rep["per_chain"] = chain_reports;

@@ -1,4 +1,6 @@
 #include "ends.h"
+#include "facet_quality.h"
+
 
 #include "trim_caps.h"
 
@@ -113,6 +115,7 @@ constexpr double kSlideOffPlane = 1e-4;   // x the chain edge's length: how far 
                                           // its facets' planes
 constexpr double kSlideKeepsAngle = 0.5;  // x min(kSnapKeepsAngle, its own): the smallest angle kept by the facets of a vertex
                                           // slid along the chain or moved onto the band's corner
+constexpr double kCuspKeepsShare = 0.75;  // x its smallest angle: a facet split by a cusp point keeps this (or the cusp's)
 constexpr double kSideShare = 0.01;  // x a side's length: how near its ends a corner is that end vertex's
 constexpr double kSideSplitShare = 0.15;  // x a side's length: a corner that near a flat side (not near its ends)
                                           // may split that side (insert_corner)
@@ -324,6 +327,46 @@ void split_crossed(SplitMesh& m, std::vector<int>& facets, const EndCut& cut, in
   }
 }
 
+// The point `step` from the corner q on the segment p -> q (made of edges now), on the edge of `facets` along
+// the segment that holds it; none where the segment is shorter than kCuspPointRoom steps or a vertex on it is
+// within half a step of the point already. (split_edges_through_points splits the facets on that edge.)
+void put_cusp_point(SplitMesh& m, const std::vector<int>& facets, const EndCut& cut, int p, int q, double step, double radius,
+                    double slack) {
+  const Vec3 P = m.points[p], Q = m.points[q];
+  const double length = (P - Q).norm();
+  if (!(step > 0) || length < kCuspPointRoom * step) return;
+  const Vec3 dir = (P - Q) / length, X = Q + dir * step;
+  const double cusp = cusp_angle(step, radius);  // the cap's angle at the cusp
+  auto along = [&](int v) { return (m.points[v] - Q).dot(dir); };
+  auto on_segment = [&](int v) { return (m.points[v] - Q - dir * along(v)).norm() <= slack; };
+  for (int t : facets) {
+    if (m.gone[size_t(t)]) continue;
+    const auto f = m.tris[size_t(t)];
+    for (int k = 0; k < 3; ++k) {
+      const int a = f[k], b = f[(k + 1) % 3];
+      if (!on_segment(a) || !on_segment(b)) continue;
+      const double sa = along(a), sb = along(b);
+      if (std::min(sa, sb) > step || std::max(sa, sb) < step) continue;
+      if (std::abs(sa - step) < 0.5 * step || std::abs(sb - step) < 0.5 * step) return;
+      // Each facet on the edge past the plane (kept: the one before it is the band's), split there, keeps its
+      // pieces' angles at the cusp's own (half the profile's step) or at kCuspKeepsShare of its own, whichever
+      // is less (a CAD face's facet from a far corner to the segment would leave pieces thinner than itself):
+      // else no point.
+      for (size_t u = 0; u < m.tris.size(); ++u) {
+        if (m.gone[u]) continue;
+        const auto g = m.tris[u];
+        const int c = g[0] + g[1] + g[2] - a - b;
+        if (std::count(g.begin(), g.end(), a) != 1 || std::count(g.begin(), g.end(), b) != 1 || cut.past(m.points[c]) <= slack) continue;
+        const Vec3 A = m.points[a], B = m.points[b], C = m.points[c];
+        const double own = smallest_angle(A, B, C);
+        if (std::min(smallest_angle(A, X, C), smallest_angle(X, B, C)) < std::min(cusp, kCuspKeepsShare * own)) return;
+      }
+      m.point_on_edge(a, b, X);
+      return;
+    }
+  }
+}
+
 // The chain edge seg.edge split at seg.start on both sides (or the vertex already there); the pieces of
 // the split facets join `facets`. Returns the vertex.
 int split_chain_edge(SplitMesh& m, const MeshTopology& mesh, std::unordered_map<std::uint64_t, std::vector<int>>& on_chain,
@@ -396,7 +439,8 @@ void split_edges_through_points(SplitMesh& m, const MeshTopology& mesh) {
 }  // namespace
 
 std::vector<EndSegment> end_segments(const MeshTopology& mesh, const SharpChain& chain, const BaseMeshes& base,
-                                     const std::vector<ProfileStation>& stations, const RoundingSurface& surface) {
+                                     const std::vector<ProfileStation>& stations, const RoundingSurface& surface,
+                                     const std::function<double(double)>& step) {
   std::vector<EndSegment> out;
   for (int end = 0; end < 2 && !chain.closed; ++end) {
     const ProfileStation& st = end ? stations.back() : stations.front();
@@ -409,7 +453,7 @@ std::vector<EndSegment> end_segments(const MeshTopology& mesh, const SharpChain&
       for (int f : base.facets[side])
         for (int k = 0; k < 3 && !goes_on; ++k) goes_on = st.cut.past(mesh.corner(f, k)) > slack;
       if (!goes_on) continue;
-      EndSegment seg{st.cut, v, mesh.point(v), {-1, -1}, corner, base.facets[side]};
+      EndSegment seg{st.cut, v, mesh.point(v), {-1, -1}, corner, base.facets[side], step(end ? surface.u_last : surface.u_first), st.radius};
       if (std::abs(st.cut.past(mesh.point(v))) > slack) {  // the plane crosses the chain short of its end
         const int n = int(chain.vertices.size());
         for (int i = 0; i + 1 < n; ++i) {
@@ -450,6 +494,7 @@ bool split_along_end_segments(const MeshTopology& mesh, const std::vector<EndSeg
     const int q = insert_corner(m, mesh, facets, seg, slack, weld);
     if (q < 0 || q == p) continue;
     split_crossed(m, facets, seg.cut, p, q, slack);
+    put_cusp_point(m, facets, seg.cut, p, q, seg.cusp_step, seg.radius, slack);
   }
   split_edges_through_points(m, mesh);
   const int n = mesh.num_vertices(), facets = mesh.num_facets();

@@ -7,7 +7,10 @@
 // section arc moved along the chain onto that plane (EndCut), the base meshes are trimmed up to the
 // plane, and the gap between the end profile and the end face is filled in the plane by the sewing pass.
 #pragma once
+#include <functional>
+
 #include "meshround/mesh_delta.h"
+#include "meshround/mesh_edit.h"
 #include "meshround/spine.h"
 #include "meshround/surface.h"
 #include "network.h"
@@ -71,10 +74,20 @@ struct EndSegment {
   int edge[2] = {-1, -1};
   Vec3 corner;             // where the round's side meets the plane (the surface's corner)
   std::vector<int> facets; // the side's base facets near the segment
+  // The round's end profile leaves the segment tangentially at the corner (a cusp: the end cap between them
+  // comes to a point there). A point is put on the segment this far from the corner, the round's step across
+  // there, so that the cap's facet at the cusp has its angle there at half the profile's first step (the
+  // least the tolerance allows) and no smaller one elsewhere; none where the segment is under
+  // kCuspPointRoom steps long.
+  double cusp_step = 0;
+  double radius = 0;       // the round's radius at that end
 };
-// The segments a chain's round needs (none where no base mesh goes on past an end's plane).
+constexpr double kCuspPointRoom = 2.5;
+// The segments a chain's round needs (none where no base mesh goes on past an end's plane). `step`: the
+// round's step across its profile at u (tessellate.h profile_step).
 std::vector<EndSegment> end_segments(const MeshTopology& mesh, const SharpChain& chain, const BaseMeshes& base,
-                                     const std::vector<ProfileStation>& stations, const RoundingSurface& surface);
+                                     const std::vector<ProfileStation>& stations, const RoundingSurface& surface,
+                                     const std::function<double(double)>& step);
 // The split as a delta of `mesh` (mesh_delta.h); returns false (delta untouched) when there is nothing to split.
 // A vertex on the plane within `weld` of a segment's corner is that corner.
 bool split_along_end_segments(const MeshTopology& mesh, const std::vector<EndSegment>& segments, double weld, MeshDelta& delta);

@@ -56,4 +56,23 @@ void recount_new_facets(const Points& V, const Triangles& F, const Points& out_V
   *thin_out = thin, *smallest_out = smallest;
 }
 
+int count_cusp_facets(const MeshEdit& edit, const std::vector<CuspPoint>& cusps, double* angle_deg) {
+  int count = 0;
+  for (const auto& f : edit.added) {
+    const Vec3 a = edit.point(f[0]), b = edit.point(f[1]), c = edit.point(f[2]);
+    const double angle = smallest_angle_deg(a, b, c);
+    if (angle >= kThinDeg) continue;
+    for (const CuspPoint& cusp_point : cusps) {
+      if (!(cusp_point.step > 0) || !(cusp_point.radius > 0)) continue;
+      const double cusp = cusp_angle(cusp_point.step, cusp_point.radius) * 180 / M_PI;
+      const double near = kCuspReach * cusp_point.step;
+      if (std::min({(a - cusp_point.at).norm(), (b - cusp_point.at).norm(), (c - cusp_point.at).norm()}) > near || angle < kCuspAngleShare * cusp)
+        continue;
+      ++count, *angle_deg = std::min(*angle_deg, cusp);
+      break;
+    }
+  }
+  return count;
+}
+
 }  // namespace meshround

@@ -2,6 +2,10 @@
 // chain as a round is made (against the input facets it replaces) and again over a finished network,
 // whose later passes replace facets that earlier ones made.
 #pragma once
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
 #include "meshround/mesh_edit.h"
 #include "meshround/types.h"
 
@@ -20,5 +24,21 @@ int count_thin_facets(const MeshTopology& mesh, const MeshEdit& edit, double* mi
 // holds every made facet.
 void recount_new_facets(const Points& V, const Triangles& F, const Points& out_V, const Triangles& out_F, const Vec3& lo,
                         const Vec3& hi, int* thin, double* smallest);
+
+// A cusp of a round's end cap (ends.h EndSegment): where the round's end profile leaves a face's trace
+// tangentially, `step` the profile's step across there and `radius` the round's.
+struct CuspPoint {
+  Vec3 at;
+  double step = 0, radius = 0;
+};
+// A facet's angle at a cusp (radians): half the angle of the profile's first step there.
+inline double cusp_angle(double step, double radius) { return std::asin(std::min(1.0, 0.5 * step / radius)); }
+// Of the made facets under kThinDeg, those at a cusp: a corner within kCuspReach steps of it and an angle no
+// smaller than kCuspAngleShare x the cusp's, half the profile's step (the most the tolerance allows there is
+// acos(1 - t / r): no mesh of the exact round within it does much better at a tangential end). The cusps'
+// angle (degrees; the smallest, where there are several) into *angle_deg.
+constexpr double kCuspReach = 2.5;  // (the cap is a wedge narrower than its step for two steps from the cusp)
+constexpr double kCuspAngleShare = 0.9;
+int count_cusp_facets(const MeshEdit& edit, const std::vector<CuspPoint>& cusps, double* angle_deg);
 
 }  // namespace meshround

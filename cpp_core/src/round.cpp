@@ -251,6 +251,9 @@ void add_to_call_report(const ChainReport& rep, double min_new, double min_input
   report.min_new_angle_deg = std::min(report.min_new_angle_deg, min_new);
   report.min_input_angle_deg = std::min(report.min_input_angle_deg, min_input);
   report.thin_facets += rep.thin_facets;
+  report.cusp_facets += rep.cusp_facets;
+  if (rep.cusp_facets > 0)
+    report.cusp_angle_deg = report.cusp_angle_deg > 0 ? std::min(report.cusp_angle_deg, rep.cusp_angle_deg) : rep.cusp_angle_deg;
   if (rep.reach_for_room > 0) report.thin_facets_short_of_room += rep.thin_facets;
   report.reach_for_room = std::max(report.reach_for_room, rep.reach_for_room);
 }
@@ -281,9 +284,12 @@ RoundedChain round_one_chain(const MeshTopology& mesh, const ChainSeed& seed, co
   RoundedChain out;
   const std::vector<ProfileStation> stations = end_cut_profiles(ctx, law, tol, opt.max_new_facets, net, surface, &out.report.surface_deviation);
   timer.done("surface");
+  const BandControls controls = BandControls::of(opt);
+  const int segments = profile_segments(stations, tol, controls);
+  const auto step = [&](double u) { return profile_step(surface, stations, segments, u); };  // across the profile at u
   if (!split) {  // a base mesh going on past an end face's plane: split along the band's corner, round that
     MeshDelta split_delta;
-    if (split_along_end_segments(mesh, end_segments(mesh, chain, base, stations, surface), kCornerWeldShare * tol, split_delta)) {
+    if (split_along_end_segments(mesh, end_segments(mesh, chain, base, stations, surface, step), kCornerWeldShare * tol, split_delta)) {
       Points V_split;
       Triangles F_split;
       StepOrigin from_split;
@@ -303,9 +309,7 @@ RoundedChain round_one_chain(const MeshTopology& mesh, const ChainSeed& seed, co
 
   MeshEdit edit(mesh);
   edit.max_new_facets = opt.max_new_facets;
-  const BandControls controls = BandControls::of(opt);
-  const int segments = profile_segments(stations, tol, controls);
-  auto spacing = [&](double u) { return std::max(controls.longest_along(profile_step(surface, stations, segments, u)), 1e-6); };
+  auto spacing = [&](double u) { return std::max(controls.longest_along(step(u)), 1e-6); };
   // The round's rows x columns at these steps, and a row of cut facets beside each trim line (a lower bound
   // of the facets made) against the work budget, before the trim spaces its lines at them: a tiny element
   // angle or length is refused at once.
@@ -370,8 +374,15 @@ RoundedChain round_one_chain(const MeshTopology& mesh, const ChainSeed& seed, co
 
   double min_new = 180, min_input = 180;
   rep.thin_facets = count_thin_facets(mesh, edit, &min_new, &min_input);
-  // Thin facets the input does not explain: would a larger reach give them room?
-  if (!is_probe && rep.thin_facets > 0 && min_input >= kThinDeg && edit.added.size() <= kRoomProbeMaxFacets) {
+  if (split && rep.thin_facets > 0) {  // at an end cap's cusp (ends.h)
+    double cusp = 180;
+    std::vector<CuspPoint> cusps;
+    for (const EndSegment& seg : end_segments(mesh, chain, base, stations, surface, step)) cusps.push_back({seg.corner, seg.cusp_step, seg.radius});
+    rep.cusp_facets = count_cusp_facets(edit, cusps, &cusp);
+    if (rep.cusp_facets > 0) rep.cusp_angle_deg = cusp;
+  }
+  // Thin facets neither the input nor a cusp explains: would a larger reach give them room?
+  if (!is_probe && rep.thin_facets > rep.cusp_facets && min_input >= kThinDeg && edit.added.size() <= kRoomProbeMaxFacets) {
     probe_reach_for_room(mesh, seed, opt, net, split, rep);
     timer.done("room");
   }
@@ -534,6 +545,7 @@ RoundResult round_edges_after(const Points& V, const Triangles& F, const std::ve
     }
     recount_new_facets(V, F, cur_V, cur_F, lo.array() - 2 * reach, hi.array() + 2 * reach, &result.report.thin_facets,
                        &result.report.min_new_angle_deg);
+    result.report.cusp_facets = std::min(result.report.cusp_facets, result.report.thin_facets);  // (a later round's cut)
     std::vector<double> radii;
     for (const RoundOptions& o : chain_options) radii.push_back(o.max_radius());
     result.report.corners = report_corners(cur_V, cur_F, network, spheres, result.chains, radii);

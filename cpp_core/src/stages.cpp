@@ -18,6 +18,8 @@ RoundReport merge_reports(const RoundReport& a, const RoundReport& b, int offset
   m.max_deviation = std::max(a.max_deviation, b.max_deviation);
   m.min_input_angle_deg = std::min(a.min_input_angle_deg, b.min_input_angle_deg);
   m.thin_facets_short_of_room = a.thin_facets_short_of_room + b.thin_facets_short_of_room;
+  m.cusp_facets = a.cusp_facets + b.cusp_facets;
+  m.cusp_angle_deg = a.cusp_facets && b.cusp_facets ? std::min(a.cusp_angle_deg, b.cusp_angle_deg) : a.cusp_angle_deg + b.cusp_angle_deg;
   m.reach_for_room = std::max(a.reach_for_room, b.reach_for_room);
   for (CornerReport c : b.corners) {
     for (int& k : c.chains) k += offset;
@@ -96,6 +98,7 @@ RoundResult round_in_stages(const Points& V, const Triangles& F, const std::vect
   const double reach = 2 * opt.reach * opt.max_radius();
   recount_new_facets(V, F, out.vertices, out.triangles, lo.array() - reach, hi.array() + reach, &out.report.thin_facets,
                      &out.report.min_new_angle_deg);
+  out.report.cusp_facets = std::min(out.report.cusp_facets, out.report.thin_facets);
   for (const RolledCorner& c : rolled) {
     const int odd = index_in_first[c.odd], round = nearest_round(out.chains, size_t(offset), c.vertex);
     if (odd >= 0 && round >= 0)

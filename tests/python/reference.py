@@ -445,7 +445,18 @@ def smoothness_and_quality(case, geo, V0, F0, V1, F1, t0, t1, made, reach, featu
     r, chain = case.r_max, geo["chain"]
     angles = min_angles_deg(V1, F1[made])
     near0 = chain.facet_distance(V0, F0, 1.5 * r) <= 1.5 * r
+    # Thin made facets that a round's tangential end does not explain: not within CUSP_NEAR r of a corner of
+    # OCCT's fillet faces, or thinner than CUSP_FLOOR of the most the tolerance allows at a cusp.
+    corners = np.array([tuple(v.Point) for f in case.rounds for v in f.Vertexes]).reshape(-1, 3)
+    thin = np.where(angles < 10.0)[0]
+    floor = CUSP_FLOOR * np.degrees(np.arccos(1 - case.tolerance / r))
+    off_ends = 0
+    for i in thin:
+        P = V1[F1[made][i]]
+        near = len(corners) and np.linalg.norm(P[:, None, :] - corners[None, :, :], axis=2).min() <= CUSP_NEAR * r
+        off_ends += int(not near or angles[i] < floor)
     return dict(
+        slivers_new_off_round_ends=off_ends,
         new_facets=int(made.sum()),
         max_dihedral_new_deg=max_dihedral_near(V1, F1, t1, chain, reach * r, geo["own_sharp_filleted"], r, made),
         # the input's own faceting of its curved faces: turns below the feature angle (sharper ones are creases)
@@ -454,6 +465,11 @@ def smoothness_and_quality(case, geo, V0, F0, V1, F1, t0, t1, made, reach, featu
         slivers_new=int((angles < 10.0).sum()),
         min_angle_input_near_deg=float(min_angles_deg(V0, F0[near0]).min()))
 
+
+# At a concave end a round leaves its side tangentially (a cusp): no facet there within tolerance t has an angle
+# over acos(1 - t / r) (8.1 deg at t = r / 100; OCCT's mesh of its own fillet at that deflection: 1.4 deg).
+CUSP_NEAR = 0.5   # / r: a facet with a corner this near a corner of the exact round is at its end
+CUSP_FLOOR = 0.6  # x acos(1 - t / r): the least angle allowed there
 
 MEASURE = 0.002  # / r: the yardstick's own precision (exact solids tessellated to 5e-4 r, samples)
 
@@ -489,6 +505,7 @@ def score(case, inp, out, report=None, reach=3.0, feature_angle=30.0):
     if report is not None:
         res["input_forces_small_angles"] = bool(report.get("input_forces_small_angles", False))
         res["thin_facets"] = report.get("thin_facets")
+        res["cusp_facets"] = report.get("cusp_facets", 0)
         res["thin_facets_short_of_room"] = report.get("thin_facets_short_of_room")
         res["reach_for_room"] = report.get("reach_for_room")
         res["engine_max_deviation"] = report.get("max_deviation")

@@ -96,6 +96,13 @@ def test_report(rounded):
      "the reach; at reach 4.5 none is."),
     (dict(thin_facets=2, min_new_angle_deg=9.2, input_forces_small_angles=False, reach_for_room=0.0),
      "2 new facet(s) under 10 deg (smallest 9.2 deg)."),
+    (dict(thin_facets=2, min_new_angle_deg=5.625, input_forces_small_angles=False, cusp_facets=2, cusp_angle_deg=5.625),
+     "2 new facet(s) under 10 deg (smallest 5.6 deg): at the round's end cusps, where its end leaves a face "
+     "tangentially, a facet's angle is half the profile's step, 5.6 deg (the tolerance t allows no more than "
+     "acos(1 - t / r) there)."),
+    (dict(thin_facets=5, min_new_angle_deg=1.37, input_forces_small_angles=False, cusp_facets=2, cusp_angle_deg=5.625,
+          reach_for_room=0.0),
+     "5 new facet(s) under 10 deg (smallest 1.4 deg) (2 at the round's end cusps, 5.6 deg)."),
 ])
 def test_quality_note_names_the_cause(report, says):
     assert MeshRound.quality_note(report) == says

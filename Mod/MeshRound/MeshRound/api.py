@@ -142,15 +142,25 @@ def round_arrays(vertices, triangles, seeds, radius, tolerance=None, feature_ang
 def quality_note(report):
     """One sentence on the new facets under 10 degrees and why they are there, or "" when there are none.
 
-    Two causes are told apart: the input's own facets there are that thin (input_forces_small_angles), or
-    the input facets the round cuts are too large for the reach, which leaves too narrow a strip to grade
-    from the round's spacing to their far corners; then the engine has rounded the chain again at wider
-    reaches, and reach_for_room is the first that made none (0: none of those did).
+    Three causes are told apart: the input's own facets there are that thin (input_forces_small_angles);
+    the round ends at a cusp (cusp_facets: a round running into a face its side goes on past, as a pocket's
+    rim edge into the next wall, leaves that side tangentially, and the chordal tolerance allows no larger
+    angle at that point than half the profile's step, cusp_angle_deg); or the input facets the round cuts are
+    too large for the reach, which leaves too narrow a strip to grade from the round's spacing to their far
+    corners; then the engine has rounded the chain again at wider reaches, and reach_for_room is the first
+    that made none (0: none of those did).
     """
     thin = report.get("thin_facets", 0)
     if not thin:
         return ""
     text = f"{thin} new facet(s) under 10 deg (smallest {report.get('min_new_angle_deg', 0.0):.1f} deg)"
+    cusp = report.get("cusp_facets", 0)
+    if cusp == thin:
+        return text + (f": at the round's end cusps, where its end leaves a face tangentially, a facet's angle is "
+                       f"half the profile's step, {report.get('cusp_angle_deg', 0.0):.1f} deg (the tolerance t "
+                       f"allows no more than acos(1 - t / r) there).")
+    if cusp:
+        text += f" ({cusp} at the round's end cusps, {report.get('cusp_angle_deg', 0.0):.1f} deg)"
     if report.get("input_forces_small_angles"):
         return text + (f": the input's own facets there have angles down to "
                        f"{report.get('min_input_angle_deg', 0.0):.1f} deg.")

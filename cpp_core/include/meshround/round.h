@@ -38,6 +38,13 @@ struct ChainReport {
   int gap_facets = 0, open_gaps = 0;
   int edges_flipped = 0, vertices_removed = 0, vertices_slid = 0;  // by the last pass, on flat ground (improve.h)
   int thin_facets = 0;         // new facets with an angle under 10 degrees
+  // Of those, the ones at an end cap's cusp: where the round runs into a face that its side goes on past (a
+  // pocket rim edge into the next wall), its end profile leaves the side tangentially, and the cap between them
+  // comes to a point. A facet there has its angle at half the profile's step (cusp_angle_deg), the most the
+  // chordal tolerance allows (acos(1 - t / r): 8.1 deg at t = r / 100); OCCT's mesh of its own fillet, at that
+  // deflection, has 1.4 deg there.
+  int cusp_facets = 0;
+  double cusp_angle_deg = 0;
   // When there are thin facets and the input facets they replace have none: the smallest reach factor
   // (of 1.25, 1.5, 2, 3 times the one asked for) at which this chain rounds with none, and its smallest
   // new angle there; 0 when none of those does, or when the round made over 10,000 new facets (not probed). Large CAD facets cut by a small round leave too little
@@ -81,6 +88,8 @@ struct RoundReport {
   bool input_forces_small_angles = false;
   int thin_facets = 0;                 // new facets under 10 degrees, over all chains
   int thin_facets_short_of_room = 0;   // of those, the ones on chains with a reach_for_room
+  int cusp_facets = 0;                 // of those, the ones at an end cap's cusp (ChainReport), and their
+  double cusp_angle_deg = 0;           // smallest angle there
   double reach_for_room = 0;           // the largest over chains (ChainReport)
   std::vector<CornerReport> corners;      // one per corner of the network, if any
   ElementQuality band;                    // the new facets' quality as CAE checks it (element_quality.h)
