@@ -1,7 +1,6 @@
 #include "ends.h"
+
 #include "facet_quality.h"
-
-
 #include "trim_caps.h"
 
 #include "delta.h"
