@@ -35,9 +35,9 @@ constexpr double kCornerBallMissShare = 0.1;
 constexpr double kSameCornerRadiusShare = 1e-3;
 // A radius law into a corner holds its value over this many radii before the corner (its end's setback).
 constexpr double kCornerLawHoldRadii = 2.0;
-// Three rounds of one convexity, two of radius r and one of R > r: the two roll on around the larger one's
-// end where the ring their balls' centres run on round its axis, R - r, is at least this share of r (R at
-// least 1.5 r). A tighter ring puts their contact line on the face on a circle far smaller than the ball,
+// Three rounds of one convexity, two of radius r (or of r and a smaller one) and one of R > r: the two roll on
+// around the larger one's end where the ring their balls' centres run on round its axis, R - r, is at least
+// this share of r (R at least 1.5 r). A tighter ring puts their contact line on the face on a circle far smaller than the ball,
 // which the trim and the rows do not follow: measured on a box corner, R = 8 with r = 7 and 7.5 refused
 // result_invalid or 0.03-0.2 r off OCCT's torus, with r = 5.33 to 6 within 0.011 r on fine, coarse and CAD meshes.
 constexpr double kRolledRingShare = 0.5;
@@ -93,8 +93,8 @@ double shared_corner_radius(const MeshTopology& input, const std::vector<SharpCh
   if (*hi - *lo > kSameCornerRadiusShare * own[ids[0]].effective_tolerance())
     throw RoundingError(ErrorCode::CornerNotBlendable, "the chains picked at and around " + format_point(picked[ids[0]]) + " meet at " +
                         format_point(input.point(v)) + " with radii " + format_number(*lo) + " and " + format_number(*hi) +
-                        " there: " + (ids.size() == 3 ? "three rounds of one convexity take different radii only where two share one and the third's is "
-                                                         "at least " + format_number(1 + kRolledRingShare) + " times it (the two roll on around its round); "
+                        " there: " + (ids.size() == 3 ? "three rounds of one convexity take different radii only where one's is at least " +
+                                                         format_number(1 + kRolledRingShare) + " times each other's (the two roll on around its round); "
                                                          "other radii there need a corner patch, not made yet"
                                                        : std::string("rounds of different radii meeting at a corner are not blended yet")) +
                         " (give them one radius at that corner)");
@@ -102,10 +102,11 @@ double shared_corner_radius(const MeshTopology& input, const std::vector<SharpCh
 }
 
 // Three rounds of one convexity ending at vertex v (chains `ids`, each with its own options): the one (0, 1
-// or 2) whose radius there is larger than the other two's, which are one radius, by kRolledRingShare of
-// theirs at least, or -1. The two then roll on around its end as one round, as OCCT's fillet makes that
-// corner (a torus; require_square_corner); equal radii meet in the corner's ball (ball_corner), others are
-// refused (shared_corner_radius). A law still changing near the corner gives -1 here, and is refused there.
+// or 2) whose radius there is larger than both others' by kRolledRingShare of the larger of them at least,
+// or -1. The two then roll on around its end as one round, as OCCT's fillet makes that corner (a torus where
+// they have one radius, else a ball whose radius goes from one's to the other's round the end;
+// require_square_corner); equal radii meet in the corner's ball (ball_corner), others are refused
+// (shared_corner_radius). A law still changing near the corner gives -1 here, and is refused there.
 int larger_radius_at(const std::vector<SharpChain>& chains, const std::vector<RoundOptions>& own, const std::vector<size_t>& ids, int v) {
   double r[3];
   for (int i = 0; i < 3; ++i) {
@@ -116,9 +117,28 @@ int larger_radius_at(const std::vector<SharpChain>& chains, const std::vector<Ro
   const double same = kSameCornerRadiusShare * own[ids[0]].effective_tolerance();
   for (int i = 0; i < 3; ++i) {
     const double a = r[(i + 1) % 3], b = r[(i + 2) % 3];
-    if (std::abs(a - b) <= same && r[i] - std::max(a, b) >= kRolledRingShare * std::max(a, b) - same) return i;  // (R = 1.5 r exactly, too)
+    if (r[i] - std::max(a, b) >= kRolledRingShare * std::max(a, b) - same) return i;  // (R = 1.5 r exactly, too)
   }
   return -1;
+}
+
+// The radii at vertex v of a rolled corner's two rounds that roll on around the odd one, where they differ
+// (the round they make together then goes from one radius to the other round the odd round's end,
+// round_in_stages); {0, 0} where they are one radius. Refuses (corner_not_blendable, naming the vertex)
+// different radii of which one is a law still changing near the corner.
+std::array<double, 2> pair_radii_at(const MeshTopology& input, const std::vector<SharpChain>& chains, const std::vector<RoundOptions>& own,
+                                    const RolledCorner& c, int v, const std::vector<Vec3>& picked) {
+  std::array<double, 2> r{};
+  bool changing[2] = {false, false};
+  for (int i : {0, 1}) r[size_t(i)] = radius_at_end(own[c.pair[size_t(i)]], chains[c.pair[size_t(i)]], v, &changing[i]);
+  if (std::abs(r[0] - r[1]) <= kSameCornerRadiusShare * own[c.pair[0]].effective_tolerance()) return {0.0, 0.0};
+  for (int i : {0, 1})
+    if (changing[i])
+      throw RoundingError(ErrorCode::CornerNotBlendable, "the radius of the chain picked at " + format_point(picked[c.pair[size_t(i)]]) +
+                          " still changes within " + format_number(kCornerLawHoldRadii) + " r of the corner at " + format_point(input.point(v)) +
+                          ", where it rolls on around another round into one of another radius: a radius law into a corner must hold its "
+                          "value over that stretch (put its last control point there)");
+  return r;
 }
 
 // Refuses (corner_not_blendable, naming the vertex) a corner where chain `odd` of `ids` -- the larger
@@ -282,6 +302,7 @@ std::vector<int> plan_stages(const MeshTopology& input, const std::vector<SharpC
           throw RoundingError(ErrorCode::CornerNotBlendable, "the chain picked at " + format_point(picked[c.odd]) + " meets the others at " +
                               format_point(c.vertex) + ", where it is rounded first and they roll on around its end: a variable radius "
                               "along it is not blended there yet (give it one radius; theirs may vary)");
+        if (!own.empty()) c.pair_radius = pair_radii_at(input, chains, own, c, v, picked);
         ask(c.odd, 0, c.vertex), ask(c.pair[0], 1, c.vertex), ask(c.pair[1], 1, c.vertex);
         rolled->push_back(c);
         continue;

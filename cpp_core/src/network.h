@@ -48,6 +48,9 @@ struct RolledCorner {
   size_t odd = 0;                    // the chain of the other convexity, or of the larger radius: rounded first
   std::array<size_t, 2> pair{0, 0};  // rounded after it, as one round
   bool odd_convex = false, pair_convex = false;
+  // The pair's radii at the vertex where they differ, else {0, 0}: their round goes from one to the other
+  // round the odd round's end (round_in_stages), as OCCT's fillet lets its ball's radius evolve there.
+  std::array<double, 2> pair_radius{0.0, 0.0};
 };
 
 // Each chain's stage: 0 made first, 1 made on stage 0's result (RolledCorner, one entry per such vertex

@@ -39,6 +39,27 @@ int nearest_round(const std::vector<RoundedChain>& rounds, size_t first, const V
   return best;
 }
 
+// At a rolled corner whose pair have different radii (network.h RolledCorner::pair_radius), the second stage's
+// law goes from one radius to the other round the odd round's end, as OCCT's fillet lets its corner ball's
+// radius evolve there (an S law: zero slope at both ends): each pair chain's radius held up to the odd
+// round's contact line on its side (the end of that contact line, `odd` made in the first stage), the
+// cubic between them over the turn. The pair's control points within the turn give way to these two.
+void evolve_round_the_end(const RolledCorner& c, const RoundedChain& odd, const std::vector<SharpChain>& chains,
+                          std::vector<RadiusControl>& law) {
+  Vec3 turn[2];
+  for (int i : {0, 1}) {
+    const std::vector<Vec3>& line = odd.contacts[i];
+    turn[i] = (line.front() - c.vertex).norm() < (line.back() - c.vertex).norm() ? line.front() : line.back();
+  }
+  const double within = std::max((turn[0] - c.vertex).norm(), (turn[1] - c.vertex).norm());
+  law.erase(std::remove_if(law.begin(), law.end(), [&](const RadiusControl& p) { return (p.point - c.vertex).norm() < within; }), law.end());
+  for (const Vec3& t : turn) {
+    double d[2];
+    chains[c.pair[0]].project(t, &d[0]), chains[c.pair[1]].project(t, &d[1]);
+    law.push_back({t, c.pair_radius[d[0] <= d[1] ? 0 : 1]});
+  }
+}
+
 }  // namespace
 
 RoundResult round_in_stages(const Points& V, const Triangles& F, const std::vector<SharpChain>& chains, const std::vector<Vec3>& seeds,
@@ -62,6 +83,8 @@ RoundResult round_in_stages(const Points& V, const Triangles& F, const std::vect
       if (stage[k] == s) stage_opt[s].radius_law.insert(stage_opt[s].radius_law.end(), own[k].radius_law.begin(), own[k].radius_law.end());
   }
   const RoundResult a = round_edges(V, F, picks[0], stage_opt[0]);
+  for (const RolledCorner& c : rolled)
+    if (c.pair_radius[0] > 0) evolve_round_the_end(c, a.chains[size_t(index_in_first[c.odd])], chains, stage_opt[1].radius_law);
   // The first stage's rounds, exact, for the second to roll on (a chain made first at a rolled corner has one
   // radius: plan_stages).
   std::vector<ExactRound> earlier;

@@ -223,10 +223,54 @@ def test_two_rounds_roll_on_around_a_larger_one_of_their_convexity(name, builder
     assert plan.refusal is None and sorted(c["kind"] for c in plan.corners) == ["rolled"] * len(tori)
 
 
+def occt_corner_evolves(case, near):
+    """OCCT's own fillet has a B-spline face at the corner `near`: its ball's radius evolves there (neither
+    a sphere nor a torus), the corner MeshRound's rolled round makes with its law round the odd round's end."""
+    return any(type(f.Surface).__name__ == "BSplineSurface" and f.distToShape(Part.Vertex(V(*near)))[0] <= case.r_max
+               for f in case.reference.Faces)
+
+
+def on_floor(e):
+    return not vertical(e) and max(v.Point.z for v in e.Vertexes) < 19
+
+
+EVOLVING_CORNERS = [  # (name, case builder, each edge's radius, OCCT's B-spline corners, meshes)
+    ("box_4_6_10", cases.box_corner, lambda e: 10.0 if vertical(e) else 4.0 if along_x(e) else 6.0, [(100, 60, 40)],
+     ["fine", "coarse", "cad"]),
+    ("rim_walls_5_3_2", cases.pocket_rim_walls(0.0), lambda e: 5.0 if vertical(e) else 3.0 if along_x(e) else 2.0,
+     [(x, y, 30) for x in (20, 60) for y in (15, 45)], ["coarse"]),
+    ("rim_walls_10_5_3_2", cases.pocket_rim_walls(10.0), lambda e: 5.0 if vertical(e) else 3.0 if along_x(e) else 2.0,
+     [(x, y, 30) for x in (20, 60) for y in (15, 45)], ["cad"]),
+    # rim 3 along x and 2 along y, floor the other way round, wall corners 5: 8 corners, each of three radii
+    ("pocket_5_3_2", cases.pocket_all(0.0), lambda e: 5.0 if vertical(e) else (3.0 if along_x(e) else 2.0) if not on_floor(e)
+     else (2.0 if along_x(e) else 3.0), [(x, y, z) for x in (20, 60) for y in (15, 45) for z in (18, 30)], ["coarse"]),
+]
+
+
+@pytest.mark.parametrize("name, builder, radius_of, corners, variant",
+                         [(n, b, r, c, v) for n, b, r, c, vs in EVOLVING_CORNERS for v in vs],
+                         ids=[f"{n}-{v}" for n, _, _, _, vs in EVOLVING_CORNERS for v in vs])
+def test_two_rounds_of_different_radii_roll_on_around_a_larger_one(name, builder, radius_of, corners, variant):
+    """Three rounds at a corner, each of its own radius, the largest at least 1.5 times the others (a box
+    corner of 4, 6 and a vertical 10; a pocket's wall corners of 5 under rim edges of 3 and 2): the largest is
+    made first and the other two roll on around its end as one round whose radius goes from one's to the
+    other's over the turn, held on each side up to the first round's contact line -- OCCT's corner there,
+    a ball of evolving radius (an S law) rolling on the face and the first round. Refused before."""
+    case = cases.Case(name, builder, None, edge_radius=radius_of)
+    assert all(occt_corner_evolves(case, p) for p in corners)
+    res = assert_sound_and_like_occt(case, case.mesh(variant))
+    rolled = [c for c in res.report["corners"] if c["kind"] == "rolled"]
+    assert len(rolled) == len(corners) == len(res.report["corners"])
+    for c in rolled:
+        assert c["seam_vertices"] >= 5 and c["deviation"] <= case.r_max / 100 and c["normal_jump_deg"] <= 1.0, c
+    plan = MeshRound.plan_network(case.mesh(variant), case.seeds, case.radius)
+    assert plan.refusal is None and sorted(c["kind"] for c in plan.corners) == ["rolled"] * len(corners)
+
+
 SPHERE_CORNER_REFUSED = [  # (the box corner's three edges' radii, whichever edge takes which, what the message says)
     ((5.0, 5.0, 7.0), "at least 1.5 times"),   # the ring round the larger round's axis too tight
     ((8.0, 8.0, 5.0), "at least 1.5 times"),   # the odd one smaller: no ball of 8 rolls on inside a round of 5
-    ((4.0, 6.0, 8.0), "radii 4 and 8"),        # three radii: a corner patch
+    ((4.0, 6.0, 8.0), "radii 4 and 8"),        # three radii, the largest under 1.5 times the next: a corner patch
 ]
 
 
