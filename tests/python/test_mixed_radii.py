@@ -267,6 +267,25 @@ def test_two_rounds_of_different_radii_roll_on_around_a_larger_one(name, builder
     assert plan.refusal is None and sorted(c["kind"] for c in plan.corners) == ["rolled"] * len(corners)
 
 
+def test_a_law_still_changing_into_a_rolled_corner_of_two_radii_is_refused_naming_it():
+    """The rim along x at y = 15 goes from 3 at (21, 15, 30) to 2 at its middle, the rim along y is 2, the wall
+    corners 5: at (20, 15, 30) the rim's two edges meet with radii 3 and 2, one of them still changing within
+    2 r, so no law from one to the other round the wall corner's end is set; refused naming the chain and
+    the corner, the input intact, and plan_network says the same."""
+    case = cases.Case("rim_walls_law", cases.pocket_rim_walls(0.0), None, edge_radius=lambda e: 5.0 if vertical(e) else 2.0)
+    law = [(p, r) for p, r in case.radius if not (abs(p.y - 15) < 1e-6 and abs(p.z - 30) < 1e-6)]
+    law += [(V(21, 15, 30), 3.0), (V(40, 15, 30), 2.0)]
+    mesh = case.mesh("coarse")
+    before = mesh.Topology
+    with pytest.raises(MeshRound.RoundingError) as err:
+        MeshRound.round_edges(mesh, case.seeds, law)
+    says = str(err.value)
+    assert err.value.code == "corner_not_blendable" and "(20, 15, 30)" in says and "still changes within 2 r" in says, says
+    assert "rolls on around another round" in says, says
+    assert mesh.Topology == before
+    assert MeshRound.plan_network(mesh, case.seeds, law).refusal == says
+
+
 SPHERE_CORNER_REFUSED = [  # (the box corner's three edges' radii, whichever edge takes which, what the message says)
     ((5.0, 5.0, 7.0), "at least 1.5 times"),   # the ring round the larger round's axis too tight
     ((8.0, 8.0, 5.0), "at least 1.5 times"),   # the odd one smaller: no ball of 8 rolls on inside a round of 5
