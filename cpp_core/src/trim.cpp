@@ -188,6 +188,84 @@ int SideTrim::cut_point(int a, int b) {
   return id;
 }
 
+// An edge with both ends in the band can still run out of it between them, where the band's edge curves
+// towards it: a CAD facet of a box's top face from one top edge to the other cuts across the inner corner
+// of a rolled round's band (top edges of 2 rolled round a vertical 8: all its corners in the band, most of
+// it outside, taken out whole -- a hole). Such an edge (sampled along; out by more than a hair) gets the two
+// points where it crosses the line, which the facets on both sides take as cut points.
+// The contact line's length from u_a to u_b (sampled).
+double SideTrim::line_length(double u_a, double u_b) const {
+  const double du = wrapped_delta(ctx.surface, u_a, u_b);
+  double length = 0;
+  Vec3 last = ctx.surface.value(u_a, side);
+  for (int k = 1; k <= 32; ++k) {
+    const Vec3 next = ctx.surface.value(ctx.surface.wrap(u_a + du * k / 32), side);
+    length += (next - last).norm(), last = next;
+  }
+  return length;
+}
+
+constexpr int kDipSamples = 16;
+constexpr double kDipDepthShare = 0.5;
+void SideTrim::find_dips() {
+  std::unordered_set<std::uint64_t> seen;
+  for (int f : ctx.base.facets[side])
+    for (int k = 0; k < 3; ++k) {
+      int a = mesh.F(f, k), b = mesh.F(f, (k + 1) % 3);
+      if (a > b) std::swap(a, b);
+      poll_cancel();
+      if (vs[a].d >= 0 || vs[b].d >= 0 || !seen.insert(edge_key(a, b)).second) continue;
+      // The distance from the band's edge changes no faster than along the edge (about: half that here, for
+      // the line's own bend), so an edge whose ends lie deeper in the band than it is long stays in.
+      const Vec3 pa = edit.point(a), pb = edit.point(b);
+      auto depth = [&](int v) {  // (measured here: a vertex deep in the band has only its side in vs)
+        double u = vs[v].u;
+        return vs[v].exact ? vs[v].d : distance(edit.point(v), u, &u);
+      };
+      const double da = depth(a), db = depth(b);
+      if (!(da < 0 && db < 0) || (pb - pa).norm() <= kDipDepthShare * (-da - db) + 2 * hair) continue;
+      // Both facets of the edge on this side: a dip's two points go into both polygons.
+      const std::vector<int> facets = mesh.edge_facets(a, b);
+      if (facets.size() != 2 || !std::all_of(facets.begin(), facets.end(), [&](int g) {
+            const auto it = ctx.base.side_of.find(g);
+            return it != ctx.base.side_of.end() && it->second == side;
+          }))
+        continue;
+      double best = -INFINITY, t_best = 0, u = vs[a].u;
+      for (int i = 1; i < kDipSamples; ++i) {
+        const double t = double(i) / kDipSamples, d = distance(pa + t * (pb - pa), u, &u);
+        if (d > best) best = d, t_best = t;
+      }
+      // (confirmed from the chain's own nearest point: a carried foot can slip to another stretch of the line)
+      double u_check = NAN;
+      if (!(best > hair) || !(distance(pa + t_best * (pb - pa), NAN, &u_check) > hair)) continue;
+      // The crossing between t0 (in the band) and t1 (out), by bisection: where the distance is nought (not
+      // a jump of a foot from one stretch of the line to another), and its line parameter.
+      auto crossing = [&](double t0, double t1, double* u_at) {
+        double uc = vs[a].u;
+        for (int it = 0; it < 60; ++it) {
+          const double t = 0.5 * (t0 + t1);
+          (distance(pa + t * (pb - pa), uc, &uc) < 0 ? t0 : t1) = t;
+        }
+        const double t = 0.5 * (t0 + t1);
+        const bool on_line = std::abs(distance(pa + t * (pb - pa), NAN, u_at)) <= 1e-3 * hair;
+        return on_line ? t : NAN;
+      };
+      double u1 = 0, u2 = 0;
+      const double t1 = crossing(0.0, t_best, &u1), t2 = crossing(1.0, t_best, &u2);
+      // The line between the two crossings runs round the part of the edge outside: at least as far as twice
+      // that part's depth.
+      if (std::isnan(t1) || std::isnan(t2) || !(t2 - t1 > 0) || line_length(u1, u2) < 2 * best) continue;
+      std::array<int, 2> ids{};
+      for (int i : {0, 1}) {
+        ids[size_t(i)] = edit.add_point(pa + (i ? t2 : t1) * (pb - pa));
+        cut_u[ids[size_t(i)]] = i ? u2 : u1;
+        out.line[side].push_back({ids[size_t(i)], i ? u2 : u1});
+      }
+      dips[edge_key(a, b)] = ids;
+    }
+}
+
 bool SideTrim::kept_whole(int g) {
   auto it = ctx.base.side_of.find(g);
   return it != ctx.base.side_of.end() && it->second == side &&
@@ -304,7 +382,9 @@ void SideTrim::cut_facets() {
     for (int k = 0; k < 3; ++k) (vs[mesh.F(f, k)].d < 0 ? in : outside) += 1;
     if (in == 0) continue;
     edit.removed.insert(f);
-    if (outside == 0 || std::all_of(&mesh.F(f, 0), &mesh.F(f, 0) + 3, [&](int v) { return vs[v].d <= 0; })) {
+    bool dipped = false;
+    for (int k = 0; k < 3; ++k) dipped |= dips.count(edge_key(mesh.F(f, k), mesh.F(f, (k + 1) % 3))) > 0;
+    if (!dipped && (outside == 0 || std::all_of(&mesh.F(f, 0), &mesh.F(f, 0) + 3, [&](int v) { return vs[v].d <= 0; }))) {
       ++out.facets_removed;
       continue;
     }
@@ -321,6 +401,10 @@ void SideTrim::cut_facets() {
         const int x = cut_point(a, b);
         if (!ring.empty() && ring.back().vertex == x) continue;  // a band vertex on an end face's plane, again
         ring.push_back({x, cut_u.count(x) ? cut_u.at(x) : vs[x].u, true}), band_before.push_back(skipped), skipped = false;
+      } else if (const auto dip = dips.find(edge_key(a, b)); dip != dips.end()) {  // out of the band and back: kept between
+        const int first = dip->second[a < b ? 0 : 1], second = dip->second[a < b ? 1 : 0];
+        ring.push_back({first, cut_u.at(first), true}), band_before.push_back(skipped), skipped = false;
+        ring.push_back({second, cut_u.at(second), true}), band_before.push_back(false);
       }
     }
     if (ring.size() > 1 && ring.back().vertex == ring.front().vertex) ring.pop_back(), band_before.pop_back(), band_before[0] = true;
@@ -398,6 +482,7 @@ TrimLines trim_base_meshes(const MeshTopology& mesh, const SharpChain& chain, co
     SideTrim trim(ctx, side, out);
     trim.classify_vertices();
     trim.grade_line_edges();
+    trim.find_dips();
     trim.cut_facets();
     trim.split_line_edges();
     trim.rebuild_kept();

@@ -4,9 +4,11 @@
 //   1. classify_vertices  each base vertex's signed distance from the band's edge; vertices near the
 //                         contact line snapped onto it (trim_lines.cpp)
 //   2. grade_line_edges   input edges from a vertex on the line to a kept one get graded points
-//   3. cut_facets         facets across the line keep their outer part, with the line refined in them
-//   4. split_line_edges   input edges lying on the line get points every max_spacing
-//   5. rebuild_kept       kept facets beside graded or split edges retriangulated with those points
+//   3. find_dips          input edges in the band at both ends that run out of it between them get
+//                         the two points where they cross the line
+//   4. cut_facets         facets across the line keep their outer part, with the line refined in them
+//   5. split_line_edges   input edges lying on the line get points every max_spacing
+//   6. rebuild_kept       kept facets beside graded or split edges retriangulated with those points
 // then takes out the capped ends' corners and closes the T-junctions a cut edge leaves in the facets
 // outside the base meshes (trim.cpp).
 #pragma once
@@ -15,6 +17,7 @@
 #include "meshround/surface.h"
 #include "meshround/trim.h"
 
+#include <array>
 #include <cmath>
 #include <cstdint>
 #include <unordered_map>
@@ -85,6 +88,7 @@ class SideTrim {
   SideTrim(TrimContext& ctx, int side, TrimLines& out);
   void classify_vertices();
   void grade_line_edges();
+  void find_dips();
   void cut_facets();
   void split_line_edges();
   void rebuild_kept();
@@ -108,6 +112,7 @@ class SideTrim {
   bool kept_whole(int g);
   bool side_stands_for_line(int f, const Vec3& q) const;
   bool line_leaves_chord(int a, int b) const;
+  double line_length(double u_a, double u_b) const;
   void refine_line_in_facet(int f, int from, double u_from, int to, double u_to, std::vector<int>& polygon);
 
   TrimContext& ctx;
@@ -123,6 +128,7 @@ class SideTrim {
   std::unordered_map<int, double> cut_u;  // cut point -> its line parameter
   std::unordered_set<int> cut, rebuild;   // facets across the line; kept facets to retriangulate
   std::unordered_map<std::uint64_t, std::vector<int>> split;  // edge (a < b) on the line -> its points, a to b
+  std::unordered_map<std::uint64_t, std::array<int, 2>> dips;  // edge (a < b) in the band at both ends, out between: its cut points, a to b
 };
 
 }  // namespace meshround

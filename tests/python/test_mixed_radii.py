@@ -195,6 +195,10 @@ TORUS_CORNERS = [  # (name, case builder, each edge's radius, the corners that a
     # was a chord across the arc, split as if it were the line; the round's boundary row went through the
     # top face (refused: facets crossing). Such an edge is no piece of the line (trim.cpp line_leaves_chord)
     ("box_2_2_3", cases.box_corner, lambda e: 3.0 if vertical(e) else 2.0, [(100, 60, 40)], ["fine", "coarse", "cad"]),
+    # the CAD mesh's top facets run from one top edge to the other across the inner corner of the rolled
+    # round's band, in it at all three corners and mostly outside: taken out whole, a hole (result_invalid, also
+    # 3 / 3 / 8, 4 / 4 / 8, 3 / 3 / 6), until their edges got the two points where they cross the band's edge
+    ("box_2_2_8", cases.box_corner, lambda e: 8.0 if vertical(e) else 2.0, [(100, 60, 40)], ["cad"]),
     ("pocket_walls5_rim3_floor3", cases.pocket_all(0.0), lambda e: 5.0 if vertical(e) else 3.0,
      [(x, y, z) for x in (20, 60) for y in (15, 45) for z in (18, 30)], ["fine", "coarse", "cad"]),
 ]
@@ -237,6 +241,7 @@ def on_floor(e):
 EVOLVING_CORNERS = [  # (name, case builder, each edge's radius, OCCT's B-spline corners, meshes)
     ("box_4_6_10", cases.box_corner, lambda e: 10.0 if vertical(e) else 4.0 if along_x(e) else 6.0, [(100, 60, 40)],
      ["fine", "coarse", "cad"]),
+    ("box_3_4_8", cases.box_corner, lambda e: 8.0 if vertical(e) else 3.0 if along_x(e) else 4.0, [(100, 60, 40)], ["cad"]),
     ("rim_walls_5_3_2", cases.pocket_rim_walls(0.0), lambda e: 5.0 if vertical(e) else 3.0 if along_x(e) else 2.0,
      [(x, y, 30) for x in (20, 60) for y in (15, 45)], ["coarse"]),
     ("rim_walls_10_5_3_2", cases.pocket_rim_walls(10.0), lambda e: 5.0 if vertical(e) else 3.0 if along_x(e) else 2.0,
