@@ -75,6 +75,14 @@ double radius_at_end(const RoundOptions& own, const SharpChain& c, int v, bool* 
   return r;
 }
 
+// The refusal of a chain (picked at `picked`) whose radius law still changes within kCornerLawHoldRadii of the
+// corner at `corner`; `where` says more of that corner.
+RoundingError law_still_changing(const Vec3& picked, const Vec3& corner, const std::string& where) {
+  return RoundingError(ErrorCode::CornerNotBlendable, "the radius of the chain picked at " + format_point(picked) + " still changes within " +
+                       format_number(kCornerLawHoldRadii) + " r of the corner at " + format_point(corner) + where +
+                       ": a radius law into a corner must hold its value over that stretch (put its last control point there)");
+}
+
 // Rounds that meet at a corner (mitre or sphere) meet in one curve only when they have one radius there:
 // the radius they share at vertex v (chains `ids`, each with its own options), or a refusal naming the
 // vertex and the radii. Laws are welcome as long as they agree at the corner.
@@ -84,10 +92,7 @@ double shared_corner_radius(const MeshTopology& input, const std::vector<SharpCh
   for (size_t id : ids) {
     bool changing = false;
     r.push_back(radius_at_end(own[id], chains[id], v, &changing));
-    if (changing)
-      throw RoundingError(ErrorCode::CornerNotBlendable, "the radius of the chain picked at " + format_point(picked[id]) + " still changes within " +
-                          format_number(kCornerLawHoldRadii) + " r of the corner at " + format_point(input.point(v)) +
-                          ": a radius law into a corner must hold its value over that stretch (put its last control point there)");
+    if (changing) throw law_still_changing(picked[id], input.point(v), "");
   }
   const auto [lo, hi] = std::minmax_element(r.begin(), r.end());
   if (*hi - *lo > kSameCornerRadiusShare * own[ids[0]].effective_tolerance())
@@ -134,10 +139,7 @@ std::array<double, 2> pair_radii_at(const MeshTopology& input, const std::vector
   if (std::abs(r[0] - r[1]) <= kSameCornerRadiusShare * own[c.pair[0]].effective_tolerance()) return {0.0, 0.0};
   for (int i : {0, 1})
     if (changing[i])
-      throw RoundingError(ErrorCode::CornerNotBlendable, "the radius of the chain picked at " + format_point(picked[c.pair[size_t(i)]]) +
-                          " still changes within " + format_number(kCornerLawHoldRadii) + " r of the corner at " + format_point(input.point(v)) +
-                          ", where it rolls on around another round into one of another radius: a radius law into a corner must hold its "
-                          "value over that stretch (put its last control point there)");
+      throw law_still_changing(picked[c.pair[size_t(i)]], input.point(v), ", where it rolls on around another round into one of another radius");
   return r;
 }
 
