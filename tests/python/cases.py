@@ -15,9 +15,11 @@ smooth law along the whole chain.
 Mesh precision.  Mesh.Mesh stores float32 points, so a mesh handed to MeshRound is already what an STL
 round trip would give (the test checks this); no STL round trip is made.
 """
+import fcntl
 import functools
 import hashlib
 import math
+import os
 import sys
 
 for _p in ("/usr/lib/freecad-python3/lib", "/usr/lib/freecad/lib"):
@@ -34,17 +36,35 @@ V = FreeCAD.Vector
 TOL = 1e-7  # mm: "on" for CAD coordinates built here
 
 _MESHES = {}  # (the solid's BRep digest, mesher options) -> its mesh, for mesh_of
+# Meshes kept on disk between the test workers and between runs (the mesher is deterministic): a fine mesh
+# of the pocket block takes the mesher over a minute, and the suite's files share many solids.
+MESH_CACHE = os.environ.get("MESHROUND_TEST_MESHES") or os.path.join(
+    os.path.dirname(os.path.abspath(__file__)), "..", "..", "build", "test-meshes")
 
 
 def mesh_of(shape, **options):
-    """MeshPart.meshFromShape(Shape=shape, **options), each solid meshed once a test session: a fine mesh of
-    the pocket block takes the mesher most of a minute, and many cases share one solid (known by its
-    vertices, faces, edges, volume and area).  A copy is returned (a test may change its mesh)."""
+    """MeshPart.meshFromShape(Shape=shape, **options), each solid meshed once (known by its vertices, faces,
+    edges, volume and area, and the FreeCAD version): kept for the session and in MESH_CACHE, where the
+    other worker and later runs find it (a lock per mesh: two workers asking at once mesh it once).  Every
+    mesh is rebuilt from its points and facets in the mesher's order, so a mesh read back is the one made.
+    A copy is returned (a test may change its mesh)."""
     geometry = sorted((round(v.X, 6), round(v.Y, 6), round(v.Z, 6)) for v in shape.Vertexes)
     geometry += [(len(shape.Faces), len(shape.Edges), round(shape.Volume, 6), round(shape.Area, 6))]
-    key = (hashlib.sha1(repr(geometry).encode()).hexdigest(), tuple(sorted(options.items())))
+    key = hashlib.sha1(repr((geometry, sorted(options.items()), FreeCAD.Version()[:3])).encode()).hexdigest()
     if key not in _MESHES:
-        _MESHES[key] = MeshPart.meshFromShape(Shape=shape, **options)
+        os.makedirs(MESH_CACHE, exist_ok=True)
+        path = os.path.join(MESH_CACHE, key + ".npz")
+        with open(path + ".lock", "w") as lock:
+            fcntl.flock(lock, fcntl.LOCK_EX)
+            if not os.path.exists(path):
+                points, facets = MeshPart.meshFromShape(Shape=shape, **options).Topology
+                np.savez(path + ".tmp.npz", points=np.array([[p.x, p.y, p.z] for p in points]),
+                         facets=np.array(facets, dtype=np.int64).reshape(-1, 3))
+                os.replace(path + ".tmp.npz", path)
+            with np.load(path) as stored:
+                mesh = Mesh.Mesh()
+                mesh.addFacets(([V(*p) for p in stored["points"]], [tuple(map(int, f)) for f in stored["facets"]]))
+        _MESHES[key] = mesh
     return _MESHES[key].copy()
 
 

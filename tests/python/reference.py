@@ -27,7 +27,7 @@ def mesh_arrays(mesh):
 def shape_arrays(shape, deflection):
     """(V, F) of a Part shape tessellated with the given chordal deflection (MeshPart: Part's own
     Shape.tessellate takes minutes on a face with a hole at this deflection)."""
-    return mesh_arrays(cases.MeshPart.meshFromShape(Shape=shape, LinearDeflection=deflection,
+    return mesh_arrays(cases.mesh_of(shape, LinearDeflection=deflection,
                                                     AngularDeflection=0.1, Relative=False))
 
 

@@ -121,7 +121,7 @@ def test_meshes_are_float32_already():
 def test_yardstick_scores_the_cad_route_near_zero(name):
     """OCCT's fillet re-meshed finely is within the yardstick's precision of itself."""
     case = cases.case(name)
-    out = cases.MeshPart.meshFromShape(Shape=case.reference, LinearDeflection=case.r_max / 1000,
+    out = cases.mesh_of(case.reference, LinearDeflection=case.r_max / 1000,
                                        AngularDeflection=0.1, Relative=False)
     row = reference.score(case, case.mesh("cad"), out)
     assert row["dev_out_to_ref"] < reference.MEASURE and row["dev_ref_to_out"] < reference.MEASURE
@@ -131,8 +131,8 @@ def test_yardstick_sees_a_dent():
     """A vertex of the exact round pushed r/20 into the solid shows as a deviation of about r/20.  (This
     tessellation has round vertices only on the end faces: the push is inward from both.)"""
     case = cases.case("box")
-    V, F = reference.mesh_arrays(cases.MeshPart.meshFromShape(
-        Shape=case.reference, LinearDeflection=case.r_max / 1000, AngularDeflection=0.1, Relative=False))
+    V, F = reference.mesh_arrays(cases.mesh_of(
+        case.reference, LinearDeflection=case.r_max / 1000, AngularDeflection=0.1, Relative=False))
     axis = np.array([35.0, 25.0])  # the round's axis in (y, z); x runs along the edge, end faces x = 0, 60
     on_round = np.where(np.abs(np.linalg.norm(V[:, 1:] - axis, axis=1) - 5) < 1e-3)[0]
     i = on_round[np.argmax(np.minimum(V[on_round, 1] - 35, V[on_round, 2] - 25) - V[on_round, 0])]

@@ -5,7 +5,6 @@ import numpy as np
 import pytest
 
 import cases  # first: it puts FreeCAD's modules on the path
-import MeshPart
 import MeshRound
 from MeshRound import api, meshconv
 from conftest import BOX_RADIUS, BOX_SEED
@@ -68,7 +67,7 @@ def test_a_ball_touching_beyond_the_reach_is_refused_on_any_mesh(narrow_slot, va
     options = dict(cases.MESH_VARIANTS[variant])
     if "MaxLength" in options:
         options["MaxLength"] *= 4.0
-    V, F = meshconv.mesh_to_arrays(MeshPart.meshFromShape(Shape=narrow_slot, **options))
+    V, F = meshconv.mesh_to_arrays(cases.mesh_of(narrow_slot, **options))
     V_before, F_before = V.copy(), F.copy()
     seed = (20.0, 30.0, 10.0)
     with pytest.raises(MeshRound.RoundingError, match=r"touches the base mesh beyond the reach; increase the reach factor"):

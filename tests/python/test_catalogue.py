@@ -11,7 +11,6 @@ import pytest
 
 import cases  # first: it puts FreeCAD's modules on the path
 import FreeCAD
-import MeshPart
 import Part
 import MeshRound
 from MeshRound import api, meshconv
@@ -25,7 +24,7 @@ SEED = tuple(BOX_SEED)  # the top back edge (y = 60, z = 40) of the 100 x 60 x 4
 
 def mefisto_box(max_length=2.0):
     shape = Part.makeBox(100, 60, 40)
-    return meshconv.mesh_to_arrays(MeshPart.meshFromShape(Shape=shape, MaxLength=max_length))
+    return meshconv.mesh_to_arrays(cases.mesh_of(shape, MaxLength=max_length))
 
 
 def shifted(mesh, offset):
@@ -81,7 +80,7 @@ def die(radius):
 def pocket_block():
     """A block with a round pocket of radius 20 mm; the seed is on its floor's concave rim."""
     block = Part.makeBox(80, 80, 30).cut(Part.makeCylinder(20, 20, FreeCAD.Vector(40, 40, 10)))
-    V, F = meshconv.mesh_to_arrays(MeshPart.meshFromShape(Shape=block, MaxLength=3))
+    V, F = meshconv.mesh_to_arrays(cases.mesh_of(block, MaxLength=3))
     return V, F, [(60.0, 40.0, 10.0)]
 
 

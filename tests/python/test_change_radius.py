@@ -25,7 +25,6 @@ import cases
 import reference
 import soundness
 import FreeCAD
-import MeshPart
 import Part
 import MeshRound
 from MeshRound import cli, reround
@@ -55,8 +54,8 @@ def case_at(name, r):
 def rounded_mesh(name, variant):
     r0 = SHAPES[name][1]
     if variant == "cad":
-        return MeshPart.meshFromShape(Shape=case_at(name, r0).reference, **CAD_MESH)
-    return MeshPart.meshFromShape(Shape=case_at(name, r0).reference, MaxLength=MAX_LENGTH[variant] * r0)
+        return cases.mesh_of(case_at(name, r0).reference, **CAD_MESH)
+    return cases.mesh_of(case_at(name, r0).reference, MaxLength=MAX_LENGTH[variant] * r0)
 
 
 def seed_on_round(case):
@@ -164,7 +163,7 @@ def elliptic_blend():
 
 def test_not_a_round_is_refused():
     solid = elliptic_blend()
-    mesh = MeshPart.meshFromShape(Shape=solid, MaxLength=1.5)
+    mesh = cases.mesh_of(solid, MaxLength=1.5)
     before = mesh.Topology
     seed = V(25, 34 + 6 * math.cos(0.8), 27 + 3 * math.sin(0.8))
     with pytest.raises(MeshRound.RoundingError) as err:
@@ -194,7 +193,7 @@ def test_variable_round_measured_law_and_made_constant():
     matches OCCT's own radius on sections (cases.measured_law) within 1 % of r_max; rounded again at a
     constant 5 mm it is OCCT's 5 mm fillet of the sharp box within 0.01 r both ways."""
     var = cases.case("box_var")
-    mesh = MeshPart.meshFromShape(Shape=var.reference, MaxLength=1.6)  # (at 2.0 a sliver at the end tilts 57 deg: refused)
+    mesh = cases.mesh_of(var.reference, MaxLength=1.6)  # (at 2.0 a sliver at the end tilts 57 deg: refused)
     seed = seed_on_round(var)
     strip = MeshRound.change_radius(mesh, [seed], 0).report["strips"][0]
     assert not strip["constant"]
@@ -242,7 +241,7 @@ def test_round_with_a_side_curved_in_plan_found_and_sharpened():
     mesh: a round_edges limit at these ends, not the sharpening's.)"""
     solid, seed = s_plate(3.0)
     assert solid.isValid()
-    mesh = MeshPart.meshFromShape(Shape=solid, MaxLength=0.4 * 3.0)
+    mesh = cases.mesh_of(solid, MaxLength=0.4 * 3.0)
     before = mesh.Topology
     res = MeshRound.change_radius(mesh, [seed], 0)
     strip = res.report["strips"][0]
@@ -264,7 +263,7 @@ def s_case(r):
 
 @functools.lru_cache(maxsize=None)
 def s_mesh():
-    return MeshPart.meshFromShape(Shape=s_case(S_R0).reference, MaxLength=0.4 * S_R0)
+    return cases.mesh_of(s_case(S_R0).reference, MaxLength=0.4 * S_R0)
 
 
 def test_s_chain_found_radius_and_sharp_edge():
@@ -310,7 +309,7 @@ def test_s_chain_on_a_finer_mesh_against_occt():
     offset of 0.01 mm moves the ball through a vertex 0.02 r off it five times as much) and it was refused
     as not a round, until such vertices were left out of the measure (SharpenOptions::measure_clearance)."""
     old = s_case(S_R0)
-    mesh = MeshPart.meshFromShape(Shape=old.reference, MaxLength=0.35 * S_R0)
+    mesh = cases.mesh_of(old.reference, MaxLength=0.35 * S_R0)
     res = MeshRound.change_radius(mesh, [seed_on_round(old)], 6.0)
     assert abs(res.report["strips"][0]["found_radius"] - S_R0) <= 0.01 * S_R0, res.report["strips"][0]
     row = reference.score(s_case(6.0), mesh, res.mesh, res.report)
@@ -330,7 +329,7 @@ def test_s_chain_on_meshes_with_slivers_along_the_contact_line(max_length):
     apex bent the wall's plane). Now: found within 1 % (3.9996 / 4.00003 / 3.9998 measured), made 6 mm within 0.01 r
     of OCCT's fillet both ways (0.0061 / 0.0064 / 0.0058 measured), sound and local."""
     old = s_case(S_R0)
-    mesh = MeshPart.meshFromShape(Shape=old.reference, MaxLength=max_length)
+    mesh = cases.mesh_of(old.reference, MaxLength=max_length)
     res = MeshRound.change_radius(mesh, [seed_on_round(old)], 6.0)
     assert abs(res.report["strips"][0]["found_radius"] - S_R0) <= FOUND_WITHIN["fine"] * S_R0, res.report["strips"][0]
     row = reference.score(s_case(6.0), mesh, res.mesh, res.report)
@@ -347,7 +346,7 @@ def test_s_chain_on_coarse_meshes():
     curves (strip.cpp measure_law)."""
     old = s_case(S_R0)
     for max_length in (2.4, 3.2):
-        mesh = MeshPart.meshFromShape(Shape=old.reference, MaxLength=max_length)
+        mesh = cases.mesh_of(old.reference, MaxLength=max_length)
         res = MeshRound.change_radius(mesh, [seed_on_round(old)], 0 if max_length > 3 else 6.0)
         strip = res.report["strips"][0]
         assert abs(strip["found_radius"] - S_R0) <= FOUND_WITHIN["coarse"] * S_R0, strip
@@ -370,7 +369,7 @@ def test_s_chain_on_coarse_meshes_with_folded_caps():
     where a cap lies between the round and a wall chord tilted by 1.5 deg)."""
     old = s_case(S_R0)
     for max_length, bar in ((2.1, 0.02), (3.5, 0.03)):
-        mesh = MeshPart.meshFromShape(Shape=old.reference, MaxLength=max_length)
+        mesh = cases.mesh_of(old.reference, MaxLength=max_length)
         res = MeshRound.change_radius(mesh, [seed_on_round(old)], 6.0)
         strip = res.report["strips"][0]
         assert abs(strip["found_radius"] - S_R0) <= FOUND_WITHIN["coarse"] * S_R0, strip
@@ -378,7 +377,7 @@ def test_s_chain_on_coarse_meshes_with_folded_caps():
         assert row["dev_out_to_ref"] <= bar and row["dev_ref_to_out"] <= bar, (max_length, row)
         assert_sound_and_local(row)
     for max_length in (2.0, 2.6):
-        mesh = MeshPart.meshFromShape(Shape=old.reference, MaxLength=max_length)
+        mesh = cases.mesh_of(old.reference, MaxLength=max_length)
         before = mesh.Topology
         with pytest.raises(MeshRound.RoundingError) as refused:
             MeshRound.change_radius(mesh, [seed_on_round(old)], 6.0)
@@ -395,7 +394,7 @@ def test_s_chain_on_a_cad_mesh_against_occt(r1):
     sides: the wall, curved in plan, is flooded with the round, and its level normals passed for a straight
     round's turning about the vertical (strip.cpp turning_axis)."""
     old = s_case(S_R0)
-    mesh = MeshPart.meshFromShape(Shape=old.reference, **CAD_MESH)
+    mesh = cases.mesh_of(old.reference, **CAD_MESH)
     res = MeshRound.change_radius(mesh, [seed_on_round(old)], r1)
     strip = res.report["strips"][0]
     assert abs(strip["found_radius"] - S_R0) <= 0.01 * S_R0 and "curved along the round" in strip["recognised"], strip
@@ -415,8 +414,8 @@ def loop_case(r):
 @functools.lru_cache(maxsize=None)
 def loop_mesh(variant):
     if variant == "cad":
-        return MeshPart.meshFromShape(Shape=loop_case(LOOP_R0).reference, **CAD_MESH)
-    return MeshPart.meshFromShape(Shape=loop_case(LOOP_R0).reference, MaxLength=MAX_LENGTH[variant] * LOOP_R0)
+        return cases.mesh_of(loop_case(LOOP_R0).reference, **CAD_MESH)
+    return cases.mesh_of(loop_case(LOOP_R0).reference, MaxLength=MAX_LENGTH[variant] * LOOP_R0)
 
 
 @pytest.mark.parametrize("variant", ["fine", "coarse"])
@@ -437,7 +436,7 @@ def test_a_round_all_around_a_loop_is_found_and_sharpened(variant):
     assert len(near) > 50 and geo["sharp"].distance(near).max() <= 0.008 * LOOP_R0
     fillet_volume = abs(old.solid.Volume - old.reference.Volume)
     # against a mesh of the sharp block alike (its bore's chords as the input's; the exact volume differs by them)
-    sharp = MeshPart.meshFromShape(Shape=old.solid, MaxLength=MAX_LENGTH[variant] * LOOP_R0)
+    sharp = cases.mesh_of(old.solid, MaxLength=MAX_LENGTH[variant] * LOOP_R0)
     Vs, Fs = reference.mesh_arrays(sharp)
     off = abs(reference.signed_volume(V1, F1)) - abs(reference.signed_volume(Vs, Fs))
     assert abs(off) <= 0.02 * fillet_volume, (off, fillet_volume)

@@ -14,7 +14,6 @@ import pytest
 import cases
 import reference
 import Mesh
-import MeshPart
 import MeshRound
 from MeshRound import cli, reround
 from test_change_radius import (seed_on_round, topology_sound, assert_sound_and_local, assert_sharp_edge_rebuilt, assert_original_radius_returns_the_input, CAD_MESH, MAX_LENGTH, FOUND_WITHIN, DEVIATION)
@@ -30,8 +29,8 @@ MITRES = {"pocket_rim_square": 4, "pocket_rim_draft": 4, "box_top_corner": 1}
 def mitred_mesh(name, variant):
     case = cases.case(name)
     if variant == "cad":
-        return MeshPart.meshFromShape(Shape=case.reference, **CAD_MESH)
-    return MeshPart.meshFromShape(Shape=case.reference, MaxLength=MAX_LENGTH[variant] * case.r_max)
+        return cases.mesh_of(case.reference, **CAD_MESH)
+    return cases.mesh_of(case.reference, MaxLength=MAX_LENGTH[variant] * case.r_max)
 
 
 @functools.lru_cache(maxsize=None)
