@@ -37,10 +37,11 @@ constexpr double kSameCornerRadiusShare = 1e-3;
 constexpr double kCornerLawHoldRadii = 2.0;
 // Three rounds of one convexity, two of radius r (or of r and a smaller one) and one of R > r: the two roll on
 // around the larger one's end where the ring their balls' centres run on round its axis, R - r, is at least
-// this share of r (R at least 1.5 r). A tighter ring puts their contact line on the face on a circle far smaller than the ball,
-// which the trim and the rows do not follow: measured on a box corner, R = 8 with r = 7 and 7.5 refused
-// result_invalid or 0.03-0.2 r off OCCT's torus, with r = 5.33 to 6 within 0.011 r on fine, coarse and CAD meshes.
-constexpr double kRolledRingShare = 0.5;
+// this share of r (R at least 1.125 r), as OCCT's fillet makes that corner whatever the radii (its pivot).
+// A tighter ring puts their contact line on the face on a circle far smaller than the ball: measured on a box
+// corner with R = 8, r = 7.5 came 0.0131 r off OCCT's torus and 7.6 / 7 / 8 was refused result_invalid on the
+// fine mesh; r = 7, 7.1 (the ring 0.127 r), 6 and 4 / 7 were within 0.0093 r on fine, coarse and CAD meshes.
+constexpr double kRolledRingShare = 0.125;
 // ... and where the larger round's chain stands square to the face the other two share, within this many
 // degrees: then their balls' centres run on a circle round its axis (a torus, as OCCT's fillet makes it).
 // Off square (a drafted pocket's wall corner into its floor) that rolling was measured too: refused
@@ -122,7 +123,7 @@ int larger_radius_at(const std::vector<SharpChain>& chains, const std::vector<Ro
   const double same = kSameCornerRadiusShare * own[ids[0]].effective_tolerance();
   for (int i = 0; i < 3; ++i) {
     const double a = r[(i + 1) % 3], b = r[(i + 2) % 3];
-    if (r[i] - std::max(a, b) >= kRolledRingShare * std::max(a, b) - same) return i;  // (R = 1.5 r exactly, too)
+    if (r[i] - std::max(a, b) >= kRolledRingShare * std::max(a, b) - same) return i;  // (R = 1.125 r exactly, too)
   }
   return -1;
 }

@@ -38,7 +38,7 @@ const CornerEnd* corner_at(const NetworkPart& net, const Vec3& end_point);
 
 // Where three picked chains end at one vertex with convex and concave edges mixed -- a pocket's rim
 // corner: two convex rim edges and the concave wall edge between them -- or with one convexity and one
-// radius at least 1.5 times the other two's -- a box's vertical edge of 8 between top edges of 5 --, the
+// radius at least 1.125 times the other two's -- a box's vertical edge of 8 between top edges of 5 --, the
 // rolling ball makes the odd chain's round first, and the other two then as one round rolling
 // on around its end (a torus where the faces are square, as in OCCT's fillet). round_edges makes the odd
 // chains in a first call and traces the others anew on its result, where the sharp edge runs on around

@@ -6,7 +6,7 @@ chain meeting at it.
   the rim rolls on around them with its own: any two radii. Scored both ways against OCCT's fillet of the
   CAD solid with each edge's own radius (a Part::Fillet feature), beyond 1 r of every corner vertex within
   the tolerance, within 1 r within three tolerances (the issue's bounds).
-- Three rounds of one convexity, two of radius r and one of R >= 1.5 r standing square to the face the two
+- Three rounds of one convexity, two of radius r and one of R >= 1.125 r standing square to the face the two
   share (a box's vertical edge under its top edges, a square pocket's wall corner over its floor): the
   larger is made first and the two roll on around it, OCCT's torus; scored the same way.
 - Otherwise mitres and sphere corners need one radius at the corner: chains with radii of their own (or
@@ -186,7 +186,9 @@ TORUS_CORNERS = [  # (name, case builder, each edge's radius, the corners that a
     ("box_5_5_8", cases.box_corner, lambda e: 8.0 if vertical(e) else 5.0, [(100, 60, 40)], ["fine", "coarse", "cad"]),
     ("box_5_8_5", cases.box_corner, lambda e: 5.0 if vertical(e) or along_x(e) else 8.0, [(100, 60, 40)], ["fine"]),
     ("box_5.33_5.33_8", cases.box_corner, lambda e: 8.0 if vertical(e) else 5.33, [(100, 60, 40)], ["coarse"]),
-    # R = 1.5 r exactly, which in floating point (7.8 - 5.2 < 0.5 x 5.2) was refused as a hair under
+    # R = 8 over r = 7: the ring its balls' centres run on is 1 mm (refused while R had to be 1.5 r)
+    ("box_7_7_8", cases.box_corner, lambda e: 8.0 if vertical(e) else 7.0, [(100, 60, 40)], ["coarse", "cad"]),
+    # R = 1.5 r exactly (the bound before), which in floating point (7.8 - 5.2 < 0.5 x 5.2) was refused as a hair under
     ("box_5.2_5.2_7.8", cases.box_corner, lambda e: 7.8 if vertical(e) else 5.2, [(100, 60, 40)], ["coarse"]),
     # 0.0127 r off (over the bound) while the rolled balls leaned on the vertical round's balls past its
     # contact line with the side faces, where those bend away from the face (spine.h ExactRound contacts)
@@ -208,7 +210,7 @@ TORUS_CORNERS = [  # (name, case builder, each edge's radius, the corners that a
                          [(n, b, r, t, v) for n, b, r, t, vs in TORUS_CORNERS for v in vs],
                          ids=[f"{n}-{v}" for n, _, _, _, vs in TORUS_CORNERS for v in vs])
 def test_two_rounds_roll_on_around_a_larger_one_of_their_convexity(name, builder, radius_of, tori, variant):
-    """Three rounds of one convexity at a corner, two of one radius r and the third R >= 1.5 r, its chain
+    """Three rounds of one convexity at a corner, two of one radius r and the third R >= 1.125 r, its chain
     square to the face the two share: the larger is made first and the two roll on around its end as one
     round -- OCCT's torus (a box's vertical edge of 8 under top edges of 5; a square pocket's floor of 3
     around wall corners of 5, rolled around at the rim too). Refused before (radii 5 and 8 at a corner)."""
@@ -242,6 +244,7 @@ EVOLVING_CORNERS = [  # (name, case builder, each edge's radius, OCCT's B-spline
     ("box_4_6_10", cases.box_corner, lambda e: 10.0 if vertical(e) else 4.0 if along_x(e) else 6.0, [(100, 60, 40)],
      ["fine", "coarse", "cad"]),
     ("box_3_4_8", cases.box_corner, lambda e: 8.0 if vertical(e) else 3.0 if along_x(e) else 4.0, [(100, 60, 40)], ["cad"]),
+    ("box_4_7_8", cases.box_corner, lambda e: 8.0 if vertical(e) else 4.0 if along_x(e) else 7.0, [(100, 60, 40)], ["cad"]),
     ("rim_walls_5_3_2", cases.pocket_rim_walls(0.0), lambda e: 5.0 if vertical(e) else 3.0 if along_x(e) else 2.0,
      [(x, y, 30) for x in (20, 60) for y in (15, 45)], ["coarse"]),
     ("rim_walls_10_5_3_2", cases.pocket_rim_walls(10.0), lambda e: 5.0 if vertical(e) else 3.0 if along_x(e) else 2.0,
@@ -256,7 +259,7 @@ EVOLVING_CORNERS = [  # (name, case builder, each edge's radius, OCCT's B-spline
                          [(n, b, r, c, v) for n, b, r, c, vs in EVOLVING_CORNERS for v in vs],
                          ids=[f"{n}-{v}" for n, _, _, _, vs in EVOLVING_CORNERS for v in vs])
 def test_two_rounds_of_different_radii_roll_on_around_a_larger_one(name, builder, radius_of, corners, variant):
-    """Three rounds at a corner, each of its own radius, the largest at least 1.5 times the others (a box
+    """Three rounds at a corner, each of its own radius, the largest at least 1.125 times the others (a box
     corner of 4, 6 and a vertical 10; a pocket's wall corners of 5 under rim edges of 3 and 2): the largest is
     made first and the other two roll on around its end as one round whose radius goes from one's to the
     other's over the turn, held on each side up to the first round's contact line -- OCCT's corner there,
@@ -292,9 +295,9 @@ def test_a_law_still_changing_into_a_rolled_corner_of_two_radii_is_refused_namin
 
 
 SPHERE_CORNER_REFUSED = [  # (the box corner's three edges' radii, whichever edge takes which, what the message says)
-    ((5.0, 5.0, 7.0), "at least 1.5 times"),   # the ring round the larger round's axis too tight
-    ((8.0, 8.0, 5.0), "at least 1.5 times"),   # the odd one smaller: no ball of 8 rolls on inside a round of 5
-    ((4.0, 6.0, 8.0), "radii 4 and 8"),        # three radii, the largest under 1.5 times the next: a corner patch
+    ((7.5, 7.5, 8.0), "at least 1.125 times"),  # the ring round the larger round's axis too tight (0.0131 r off OCCT)
+    ((8.0, 8.0, 5.0), "at least 1.125 times"),  # the odd one smaller: no ball of 8 rolls on inside a round of 5
+    ((6.0, 7.5, 8.0), "radii 6 and 8"),         # three radii, the largest under 1.125 times the next: a corner patch
 ]
 
 
