@@ -231,9 +231,14 @@ void SideTrim::find_dips() {
             return it != ctx.base.side_of.end() && it->second == side;
           }))
         continue;
-      double best = -INFINITY, t_best = 0, u = vs[a].u;
+      // How far out the edge runs: the foot carried along it, and from the chain's own nearest point (each
+      // can slip to another stretch of the line round a turn of it: the box's CAD mesh at a rolled corner of
+      // 5 / 7 under 8 read 11 mm where the edge runs 5.4 mm out, and its dip was lost), the nearer taken.
+      double best = -INFINITY, t_best = 0, u = vs[a].u, u_near = NAN;
       for (int i = 1; i < kDipSamples; ++i) {
-        const double t = double(i) / kDipSamples, d = distance(pa + t * (pb - pa), u, &u);
+        const double t = double(i) / kDipSamples;
+        double d = distance(pa + t * (pb - pa), u, &u);
+        if (d > best) d = std::min(d, distance(pa + t * (pb - pa), NAN, &u_near));
         if (d > best) best = d, t_best = t;
       }
       // (confirmed from the chain's own nearest point: a carried foot can slip to another stretch of the line)
@@ -242,7 +247,7 @@ void SideTrim::find_dips() {
       // The crossing between t0 (in the band) and t1 (out), by bisection: where the distance is nought (not
       // a jump of a foot from one stretch of the line to another), and its line parameter.
       auto crossing = [&](double t0, double t1, double* u_at) {
-        double uc = vs[a].u;
+        double uc = vs[t0 == 0.0 ? a : b].u;  // (the foot carried from that end's own)
         for (int it = 0; it < 60; ++it) {
           const double t = 0.5 * (t0 + t1);
           (distance(pa + t * (pb - pa), uc, &uc) < 0 ? t0 : t1) = t;

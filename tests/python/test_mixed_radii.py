@@ -232,10 +232,9 @@ def test_two_rounds_roll_on_around_a_larger_one_of_their_convexity(name, builder
 
 # Rolled corners with the largest radius 1.125-1.5 times the others (a ring of only 1-2 mm round its axis), on the
 # box corner's CAD mesh and MeshPart meshes from 0.6 to 2.3 R: each rounds soundly or is refused by name with the
-# input intact -- never a broken mesh. Measured: of these 30, 27 round (every mesh of 7.11 / 7.11 / 8, 6 / 6 / 8 and
-# 3 / 3 / 3.4); 5 / 7 / 8 and 3 / 7 / 8 on the CAD mesh (its top facets' diagonal meets the x round's contact line
-# where its law starts to evolve: two points made for one crossing) and 7 / 5 / 8 at 1.7 R are refused
-# result_invalid.
+# input intact -- never a broken mesh. Measured: of these 30, 29 round; 7 / 5 / 8 at 1.7 R is refused
+# result_invalid. (5 / 7 / 8 and 3 / 7 / 8 on the CAD mesh were refused too, while a top facet's edge that runs
+# out of the band round the turn was read 11 mm out instead of 5.4 and its dip lost: trim.cpp find_dips.)
 TIGHT_RINGS = [(7.11, 7.11, 8.0), (6.0, 6.0, 8.0), (5.0, 7.0, 8.0), (7.0, 5.0, 8.0), (3.0, 7.0, 8.0), (3.0, 3.0, 3.4)]
 
 
@@ -258,7 +257,7 @@ def test_rolled_corners_on_tight_rings_round_soundly_or_are_refused_by_name(rx, 
             assert [c["kind"] for c in res.report["corners"]] == ["rolled"]
             rounded += 1
         assert mesh.Topology == before
-    assert rounded >= 4, rounded  # the measured share: 4 or 5 of the 5 meshes round
+    assert rounded >= (4 if (rx, ry, rv) == (7.0, 5.0, 8.0) else 5), rounded  # as measured
 
 def occt_corner_evolves(case, near):
     """OCCT's own fillet has a B-spline face at the corner `near`: its ball's radius evolves there (neither
@@ -276,6 +275,7 @@ EVOLVING_CORNERS = [  # (name, case builder, each edge's radius, OCCT's B-spline
      ["fine", "coarse", "cad"]),
     ("box_3_4_8", cases.box_corner, lambda e: 8.0 if vertical(e) else 3.0 if along_x(e) else 4.0, [(100, 60, 40)], ["cad"]),
     ("box_4_7_8", cases.box_corner, lambda e: 8.0 if vertical(e) else 4.0 if along_x(e) else 7.0, [(100, 60, 40)], ["cad"]),
+    ("box_5_7_8", cases.box_corner, lambda e: 8.0 if vertical(e) else 5.0 if along_x(e) else 7.0, [(100, 60, 40)], ["cad"]),
     ("rim_walls_5_3_2", cases.pocket_rim_walls(0.0), lambda e: 5.0 if vertical(e) else 3.0 if along_x(e) else 2.0,
      [(x, y, 30) for x in (20, 60) for y in (15, 45)], ["coarse"]),
     ("rim_walls_10_5_3_2", cases.pocket_rim_walls(10.0), lambda e: 5.0 if vertical(e) else 3.0 if along_x(e) else 2.0,
