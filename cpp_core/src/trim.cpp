@@ -231,14 +231,16 @@ void SideTrim::find_dips() {
             return it != ctx.base.side_of.end() && it->second == side;
           }))
         continue;
-      // How far out the edge runs: the foot carried along it, and from the chain's own nearest point (each
-      // can slip to another stretch of the line round a turn of it: the box's CAD mesh at a rolled corner of
-      // 5 / 7 under 8 read 11 mm where the edge runs 5.4 mm out, and its dip was lost), the nearer taken.
+      // How far out the edge runs: the foot carried along it, and, where that reads out of the band, from the
+      // chain's own nearest point too (each can slip to another stretch of the line round a turn of it: the
+      // box's CAD mesh at a rolled corner of 5 / 7 under 8 read 11 mm where the edge runs 5.4 mm out, and its
+      // dip was lost), the nearer taken. (A sample the carried foot reads in the band is not a dip's deepest:
+      // the second measure, a search along the whole chain, is spent on the few that read out.)
       double best = -INFINITY, t_best = 0, u = vs[a].u, u_near = NAN;
       for (int i = 1; i < kDipSamples; ++i) {
         const double t = double(i) / kDipSamples;
         double d = distance(pa + t * (pb - pa), u, &u);
-        if (d > best) d = std::min(d, distance(pa + t * (pb - pa), NAN, &u_near));
+        if (d > std::max(best, hair)) d = std::min(d, distance(pa + t * (pb - pa), NAN, &u_near));
         if (d > best) best = d, t_best = t;
       }
       // (confirmed from the chain's own nearest point: a carried foot can slip to another stretch of the line)
