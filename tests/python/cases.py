@@ -35,37 +35,51 @@ import numpy as np  # noqa: E402
 V = FreeCAD.Vector
 TOL = 1e-7  # mm: "on" for CAD coordinates built here
 
-_MESHES = {}  # (the solid's BRep digest, mesher options) -> its mesh, for mesh_of
-# Meshes kept on disk between the test workers and between runs (the mesher is deterministic): a fine mesh
-# of the pocket block takes the mesher over a minute, and the suite's files share many solids.
-MESH_CACHE = os.environ.get("MESHROUND_TEST_MESHES") or os.path.join(
-    os.path.dirname(os.path.abspath(__file__)), "..", "..", "build", "test-meshes")
+_MESHES = {}  # (the solid's digest, mesher options) -> its mesh, for mesh_of
+# What the tests make slowly and deterministically -- meshes of the CAD solids (a fine mesh of the pocket block
+# takes the mesher over a minute) and the yardstick's exact samples of OCCT's fillets -- kept on disk between
+# the two test workers and between runs: the suite's files share many solids.
+TEST_STORE = os.environ.get("MESHROUND_TEST_STORE") or os.path.join(
+    os.path.dirname(os.path.abspath(__file__)), "..", "..", "build", "test-store")
+
+
+def shape_digest(shape):
+    """A Part shape known by its vertices, faces, edges, volume and area (to 1e-6 mm)."""
+    geometry = sorted((round(v.X, 6), round(v.Y, 6), round(v.Z, 6)) for v in shape.Vertexes)
+    return geometry + [(len(shape.Faces), len(shape.Edges), round(shape.Volume, 6), round(shape.Area, 6))]
+
+
+def kept_on_disk(what, make):
+    """The arrays `make()` returns (a dict name -> numpy array), made once for `what` (any repr-able key, with
+    the FreeCAD version added): kept in TEST_STORE, where the other worker and later runs find them (a lock
+    per key: two workers asking at once make them once)."""
+    key = hashlib.sha1(repr((what, FreeCAD.Version()[:3])).encode()).hexdigest()
+    os.makedirs(TEST_STORE, exist_ok=True)
+    path = os.path.join(TEST_STORE, key + ".npz")
+    with open(path + ".lock", "w") as lock:
+        fcntl.flock(lock, fcntl.LOCK_EX)
+        if not os.path.exists(path):
+            np.savez(path + ".tmp.npz", **make())
+            os.replace(path + ".tmp.npz", path)
+        with np.load(path) as stored:
+            return {name: stored[name] for name in stored.files}
 
 
 def mesh_of(shape, **options):
-    """MeshPart.meshFromShape(Shape=shape, **options), each solid meshed once (known by its vertices, faces,
-    edges, volume and area, and the FreeCAD version): kept for the session and in MESH_CACHE, where the
-    other worker and later runs find it (a lock per mesh: two workers asking at once mesh it once).  Every
-    mesh is rebuilt from its points and facets in the mesher's order, so a mesh read back is the one made.
-    A copy is returned (a test may change its mesh)."""
-    geometry = sorted((round(v.X, 6), round(v.Y, 6), round(v.Z, 6)) for v in shape.Vertexes)
-    geometry += [(len(shape.Faces), len(shape.Edges), round(shape.Volume, 6), round(shape.Area, 6))]
-    key = hashlib.sha1(repr((geometry, sorted(options.items()), FreeCAD.Version()[:3])).encode()).hexdigest()
-    if key not in _MESHES:
-        os.makedirs(MESH_CACHE, exist_ok=True)
-        path = os.path.join(MESH_CACHE, key + ".npz")
-        with open(path + ".lock", "w") as lock:
-            fcntl.flock(lock, fcntl.LOCK_EX)
-            if not os.path.exists(path):
-                points, facets = MeshPart.meshFromShape(Shape=shape, **options).Topology
-                np.savez(path + ".tmp.npz", points=np.array([[p.x, p.y, p.z] for p in points]),
-                         facets=np.array(facets, dtype=np.int64).reshape(-1, 3))
-                os.replace(path + ".tmp.npz", path)
-            with np.load(path) as stored:
-                mesh = Mesh.Mesh()
-                mesh.addFacets(([V(*p) for p in stored["points"]], [tuple(map(int, f)) for f in stored["facets"]]))
-        _MESHES[key] = mesh
-    return _MESHES[key].copy()
+    """MeshPart.meshFromShape(Shape=shape, **options), each solid meshed once (kept_on_disk).  Every mesh is
+    rebuilt from its points and facets in the mesher's order, so a mesh read back is the one made.  A copy is
+    returned (a test may change its mesh)."""
+    what = ("mesh", shape_digest(shape), sorted(options.items()))
+    if repr(what) not in _MESHES:
+        def make():
+            points, facets = MeshPart.meshFromShape(Shape=shape, **options).Topology
+            return dict(points=np.array([[p.x, p.y, p.z] for p in points]).reshape(-1, 3),
+                        facets=np.array(facets, dtype=np.int64).reshape(-1, 3))
+        stored = kept_on_disk(what, make)
+        mesh = Mesh.Mesh()
+        mesh.addFacets(([V(*p) for p in stored["points"].tolist()], [tuple(f) for f in stored["facets"].tolist()]))
+        _MESHES[repr(what)] = mesh
+    return _MESHES[repr(what)].copy()
 
 
 # Mesh variants of the sharp solid; MaxLength is relative to the case's largest radius.

@@ -5,6 +5,9 @@ point-to-triangle distances to a triangle set; the exact solids are tessellated 
 (LinearDeflection 5e-4 r), so "exact" means to 5e-4 r, 1/20 of the tolerance r/100.
 `score(case, inp, out, report)` returns every figure of one rounding; see test_accuracy.py for the bounds.
 """
+import hashlib
+import itertools
+
 import numpy as np
 from scipy.sparse import coo_matrix
 from scipy.sparse.csgraph import connected_components
@@ -64,7 +67,7 @@ def pairs_within(tree, P, radius):
     lists = tree.query_ball_point(P, radius)
     counts = np.fromiter((len(x) for x in lists), dtype=np.int64, count=len(P))
     rows = np.repeat(np.arange(len(P)), counts)
-    cols = np.fromiter((j for x in lists for j in x), dtype=np.int64, count=int(counts.sum()))
+    cols = np.fromiter(itertools.chain.from_iterable(lists), dtype=np.int64, count=int(counts.sum()))
     return rows, cols
 
 
@@ -134,16 +137,19 @@ class Chain:
         self.points = case.points
         self.tree = cKDTree(self.points)
 
-    def distance(self, P):
-        return self.tree.query(P)[0]
+    def distance(self, P, within=np.inf):
+        """Distance from each point to the chain, inf where it exceeds `within` (the search stops there: a
+        large mesh sorted by a reach is sorted fast)."""
+        return self.tree.query(P, distance_upper_bound=np.nextafter(within, np.inf))[0]
 
     def facet_distance(self, V, F, beyond):
-        """Distance from each facet to the chain, exact only where it decides `> beyond` (else a bound)."""
+        """For each facet, a figure on the same side of `beyond` as its distance to the chain (a bound of that
+        distance; inf for a facet far beyond): what decides `> beyond`."""
         A, B, C = V[F[:, 0]], V[F[:, 1]], V[F[:, 2]]
         cen = (A + B + C) / 3
         rad = np.max([norm(X - cen) for X in (A, B, C)], axis=0)
-        dv = np.min([self.distance(X) for X in (A, B, C)], axis=0)  # upper bound
-        lo = np.maximum(self.distance(cen) - rad, 0)  # lower bound
+        dv = np.min([self.distance(X, beyond) for X in (A, B, C)], axis=0)  # upper bound (inf: > beyond)
+        lo = np.maximum(self.distance(cen, beyond + rad.max(initial=0)) - rad, 0)  # lower bound
         out = np.where(lo > beyond, lo, dv)
         unsure = np.where((lo <= beyond) & (dv > beyond))[0]
         if len(unsure):
@@ -160,7 +166,7 @@ def near_triangles(V, F, chain, within):
     """The triangles of (V, F) whose centroid lies within `within` (+ their own size) of the chain."""
     cen = V[F].mean(axis=1)
     rad = np.max([norm(V[F[:, i]] - cen) for i in range(3)], axis=0)
-    return F[chain.distance(cen) <= within + rad]
+    return F[chain.distance(cen, within + rad.max(initial=0)) <= within + rad]
 
 
 def exact_skin(shape, case, chain, within):
@@ -264,9 +270,9 @@ def max_dihedral_near(V, F, table, chain, reach, own_sharp, r, only=None, below=
     ok = table["count"] == 2
     if only is not None:
         ok &= only[table["first"]] | only[np.maximum(table["second"], 0)]
-    ok &= chain.distance(V[E].mean(axis=1)) <= reach
+    ok &= chain.distance(V[E].mean(axis=1), reach) <= reach
     if len(own_sharp):
-        on = cKDTree(own_sharp).query(V)[0] <= 0.05 * r
+        on = cKDTree(own_sharp).query(V, distance_upper_bound=0.06 * r)[0] <= 0.05 * r
         ok &= ~(on[E[:, 0]] & on[E[:, 1]])
     turn = dihedrals_deg(V, F, table, np.where(ok)[0])
     turn = turn[turn < below]
@@ -295,28 +301,33 @@ def cyclic_keys(F):
 
 # ------------------------------------------------------------------------------------------------ score
 _CACHE = {}
+_SOURCE = hashlib.sha1(open(__file__, "rb").read()).hexdigest()  # the samples are remade when this file changes
 
 
 def exact_geometry(case, reach):
-    """Per case (cached): the chain, the exact filleted and sharp skins near it, samples on the rounds
-    and on the sharp faces at the chain, and the filleted solid's own sharp edges."""
+    """Per case (kept for the session): the chain, the exact filleted and sharp skins near it, samples on the
+    rounds and on the sharp faces at the chain, and the filleted solid's own sharp edges.  The samples (slow:
+    OCCT's trimmed-domain test point by point) are also kept on disk (cases.kept_on_disk); the skins are cut
+    anew from the solids' stored tessellations."""
     key = (case.name, reach)
     if key not in _CACHE:
         chain, r = Chain(case), case.r_max
-        _CACHE[key] = dict(
-            chain=chain,
-            filleted=exact_skin(case.reference, case, chain, (reach + 1.5) * r),
-            sharp=exact_skin(case.solid, case, chain, 4 * r),
-            sharp_samples=sharp_samples_near(case, chain, 2 * r),
-            rounds=round_samples(case),
-            own_sharp_filleted=sharp_edge_points(case.reference, 0.01 * r))
+
+        def make():
+            return dict(sharp_samples=sharp_samples_near(case, chain, 2 * r), rounds=round_samples(case),
+                        own_sharp_filleted=sharp_edge_points(case.reference, 0.01 * r))
+        what = ("exact samples", _SOURCE, cases.shape_digest(case.reference), cases.shape_digest(case.solid),
+                hashlib.sha1(np.ascontiguousarray(case.points).tobytes()).hexdigest(), r)
+        _CACHE[key] = dict(cases.kept_on_disk(what, make), chain=chain,
+                           filleted=exact_skin(case.reference, case, chain, (reach + 1.5) * r),
+                           sharp=exact_skin(case.solid, case, chain, 4 * r))
     return _CACHE[key]
 
 
 def sharp_samples_near(case, chain, within):
     """Points on the sharp solid's faces that touch the chain, within `within` of it, about r/10 apart."""
     faces = [f for f in case.solid.Faces if any(e.isSame(c) for e in f.Edges for c in case.chain)]
-    return np.concatenate([face_samples(f, 0.1 * case.r_max, lambda P: chain.distance(P) <= within) for f in faces])
+    return np.concatenate([face_samples(f, 0.1 * case.r_max, lambda P: chain.distance(P, within) <= within) for f in faces])
 
 
 def input_tessellation_error(case, V0, F0, geo):
@@ -325,7 +336,7 @@ def input_tessellation_error(case, V0, F0, geo):
     chain, r = geo["chain"], case.r_max
     near = near_triangles(V0, F0, chain, 2 * r)
     P = surface_samples(V0, near)
-    there = geo["sharp"].distance(P[chain.distance(P) <= 2 * r]).max(initial=0)
+    there = geo["sharp"].distance(P[chain.distance(P, 2 * r) <= 2 * r]).max(initial=0)
     S = geo["sharp_samples"]
     back = TriangleSet(V0, near, 0.2 * r).distance(S).max(initial=0)
     return float(max(there, back))
@@ -337,7 +348,7 @@ def deviation_samples(case, geo, V1, F1, made, reach):
     tolerances) is only bounded: it lies between 0.1 and the figure given."""
     r, chain = case.r_max, geo["chain"]
     P = surface_samples(V1, F1[made])
-    P = P[chain.distance(P) <= (reach + 1) * r]  # made facets beyond: see far_facets_added
+    P = P[chain.distance(P, (reach + 1) * r) <= (reach + 1) * r]  # made facets beyond: see far_facets_added
     band = F1[chain.facet_distance(V1, F1, (reach + 1) * r) <= (reach + 1) * r]
     return ((P, geo["filleted"].distance(P, cap=0.1 * r) / r),
             (geo["rounds"], TriangleSet(V1, band, 0.2 * r).distance(geo["rounds"], cap=0.1 * r) / r))
@@ -433,7 +444,7 @@ def locality(case, chain, V0, F0, V1, F1, made, ids, keys, reach):
     longest = np.zeros(len(V0))
     for i in range(3):
         np.maximum.at(longest, F0[:, i], np.max([norm(V0[F0[:, i]] - V0[F0[:, j]]) for j in range(3)], axis=0))
-    far_v = chain.distance(V0) > reach * r + longest
+    far_v = chain.distance(V0, reach * r + longest.max(initial=0)) > reach * r + longest
     far_f = chain.facet_distance(V0, F0, reach * r) > reach * r
     far_made = chain.facet_distance(V1, F1[made], 1.05 * reach * r) > 1.05 * reach * r
     return dict(far_vertices=int(far_v.sum()), far_vertices_lost=int((~np.isin(id0[far_v], id1)).sum()),
