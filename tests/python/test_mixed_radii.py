@@ -259,6 +259,24 @@ def test_rolled_corners_on_tight_rings_round_soundly_or_are_refused_by_name(rx, 
         assert mesh.Topology == before
     assert rounded >= (4 if (rx, ry, rv) == (7.0, 5.0, 8.0) else 5), rounded  # as measured
 
+# The whole pocket (rim and floor 4.5, wall corners 6) on a MeshPart mesh of 0.3 R (1.8 mm): its floor loop's balls on
+# the walls were refused beyond_reach while a wall vertex 5 mm from the loop read 15+ mm (projected by walking the
+# loop from a neighbour's foot, stopped in a dip of the distance along it: chain.cpp collect_base_meshes). Now
+# measured: 0.0098 r beyond 1 r of the corners, 0.0085 r within (5 / 5 / 6 on the same mesh: 0.0123 r, past the
+# tolerance by a quarter of a hundredth -- a sound mesh, checked here for soundness only).
+def test_a_whole_pocket_s_floor_loop_on_a_1_8_mm_mesh_finds_its_walls_within_reach():
+    radius_of = {4.5: lambda e: 6.0 if vertical(e) else 4.5, 5.0: lambda e: 6.0 if vertical(e) else 5.0}
+    for r in (4.5, 5.0):
+        case = cases.Case(f"pocket_{r:g}_6", cases.pocket_all(0.0), None, edge_radius=radius_of[r])
+        mesh = cases.mesh_of(case.solid, MaxLength=0.3 * 6.0)
+        if r == 4.5:
+            res = assert_sound_and_like_occt(case, mesh)
+        else:
+            res = MeshRound.round_edges(mesh, case.seeds, case.radius)
+            assert soundness.problems(*reference.mesh_arrays(mesh), *reference.mesh_arrays(res.mesh)) == []
+        assert [c["kind"] for c in res.report["corners"]] == ["rolled"] * 8  # the rim's four and the floor's
+
+
 def occt_corner_evolves(case, near):
     """OCCT's own fillet has a B-spline face at the corner `near`: its ball's radius evolves there (neither
     a sphere nor a torus), the corner MeshRound's rolled round makes with its law round the odd round's end."""
