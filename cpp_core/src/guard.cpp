@@ -157,6 +157,21 @@ void check_new_boundary(const MeshEdit& edit, const std::vector<std::uint64_t>& 
       report_new_flaw(edit, was, edge_middle(edit, key), reach, "a new boundary edge, a hole in the mesh", open, "fill the hole first");
 }
 
+// A vertex of the input's boundary that the result keeps stays on its boundary: a hole whose edge the band
+// takes only in part is not covered over (a hole 3 mm up a pocket's wall beside its floor loop, one corner of
+// it above the contact line, came back closed). A hole the band takes whole goes with it (check_new_boundary).
+void check_boundary_kept(const MeshEdit& edit, const std::vector<std::uint64_t>& was, const std::vector<std::uint64_t>& is,
+                         const std::vector<Facet>& after, double reach) {
+  std::unordered_set<int> on_boundary, used;
+  for (std::uint64_t key : is) on_boundary.insert(int(key >> 32)), on_boundary.insert(int(key & 0xffffffffu));
+  for (const Facet& f : after) used.insert(f.begin(), f.end());
+  for (std::uint64_t key : was)
+    for (int v : {int(key >> 32), int(key & 0xffffffffu)})
+      if (used.count(v) && !on_boundary.count(v))
+        report_new_flaw(edit, was, edit.point(v), reach, "a hole in the mesh covered over, part of its edge kept",
+                        "the mesh is open (a hole in it, or its edge) where the rounding goes, at ", "fill the hole first");
+}
+
 // Where the mesh's edge leaves the band and comes back: each pair of unchanged vertices joined by the input's
 // boundary outside the band (walked once; the same before and after the rounding). False where that
 // boundary is itself pinched (not judged).
@@ -471,6 +486,7 @@ void check_result(const MeshEdit& edit, const SharpChain& chain, double reach, d
 
   const EdgeFlaws was = edge_flaws(before, changed), is = edge_flaws(after, changed);
   check_new_boundary(edit, was.boundary, is.boundary, BoundaryRule(edit, was.boundary, chain, reach, tolerance, slack), reach);
+  check_boundary_kept(edit, was.boundary, is.boundary, after, reach);
   check_boundary_loops(edit, was.boundary, is.boundary, changed);
   check_new_flaws(edit, was.non_manifold, is.non_manifold, reach, "a new non-manifold edge, shared by more than two facets",
                   "the mesh is non-manifold (an edge shared by more than two facets) where the rounding goes, at ");
