@@ -416,18 +416,19 @@ std::vector<SharpChain> find_chains(const MeshTopology& mesh, const std::vector<
   return chains;
 }
 
-RoundingError on_own_mesh(const RoundingError& e, const MeshTopology& input, const Vec3& picked, const RoundOptions& opt) {
-  if (e.code != ErrorCode::NonManifoldInput && e.code != ErrorCode::NoSharpEdge) return e;
-  // A hole or a flipped facet the band ran over, there on the input too: the input's
-  if (const auto* flaw = dynamic_cast<const InputFlaw*>(&e); flaw && flawed_near(input, flaw->where, opt.max_radius())) return e;
+void rethrow_on_own_mesh(const RoundingError& e, const MeshTopology& input, const Vec3& picked, const RoundOptions& opt) {
+  if (e.code != ErrorCode::NonManifoldInput && e.code != ErrorCode::NoSharpEdge) throw;
+  // A hole or a flipped facet the band ran over, there on the input too: the input's (rethrown whole, so
+  // that a caller of a caller still sees where it lies)
+  if (const auto* flaw = dynamic_cast<const InputFlaw*>(&e); flaw && flawed_near(input, flaw->where, opt.max_radius())) throw;
   try {  // the same chain's base meshes on the input: a fault there is the input's, named as such
     const SharpChain chain = trace_chain(input, picked, opt.feature_angle_deg, opt.reach * opt.max_radius());
     check_base_meshes(input, collect_base_meshes(input, chain, opt.reach * opt.max_radius(), opt.feature_angle_deg));
   } catch (const RoundingError& on_input) {
-    if (on_input.code == ErrorCode::NonManifoldInput || on_input.code == ErrorCode::NoSharpEdge) return on_input;
+    if (on_input.code == ErrorCode::NonManifoldInput || on_input.code == ErrorCode::NoSharpEdge) throw;
   }
-  return RoundingError(ErrorCode::ResultInvalid, std::string("the rounds made before the chain picked at ") + format_point(picked) +
-                       " left a mesh it cannot be rounded on (" + e.what() + "); nothing was changed. Try another radius, or round it in a call of its own");
+  throw RoundingError(ErrorCode::ResultInvalid, std::string("the rounds made before the chain picked at ") + format_point(picked) +
+                      " left a mesh it cannot be rounded on (" + e.what() + "); nothing was changed. Try another radius, or round it in a call of its own");
 }
 
 RoundResult round_edges(const Points& V, const Triangles& F, const std::vector<Vec3>& seeds, const RoundOptions& opt) {
@@ -516,7 +517,7 @@ RoundResult round_edges_after(const Points& V, const Triangles& F, const std::ve
       try {
         result.chains.push_back(round_one_chain(mesh, seed, chain_options[k], result.report, &step, net, keep));
       } catch (const RoundingError& e) {
-        throw on_own_mesh(e, input, picked[k], chain_options[k]);
+        rethrow_on_own_mesh(e, input, picked[k], chain_options[k]);
       }
     }
     if (passes == 1) delta = std::move(step);

@@ -97,7 +97,7 @@ RoundResult round_in_stages(const Points& V, const Triangles& F, const std::vect
   try {
     b = round_edges_after(a.vertices, a.triangles, picks[1], stage_opt[1], earlier);
   } catch (const RoundingError& e) {
-    throw on_own_mesh(e, MeshTopology(V, F), picks[1].front(), opt);
+    rethrow_on_own_mesh(e, MeshTopology(V, F), picks[1].front(), opt);
   }
 
   RoundResult out;

@@ -13,10 +13,11 @@ namespace meshround {
 
 // A later pass of a network (or a second stage) works on the mesh the earlier ones made: what it finds
 // wrong with that mesh (a degenerate facet, an edge no longer sharp) is this call's own fault, not the
-// input's, and is reported as result_invalid naming the chain picked at `picked` -- unless the same chain's
-// base meshes on the input show the fault too (a flipped facet the first pass did not reach): then that
-// input error. Other errors as they are.
-RoundingError on_own_mesh(const RoundingError& e, const MeshTopology& input, const Vec3& picked, const RoundOptions& opt);
+// input's, and is thrown as result_invalid naming the chain picked at `picked` -- unless the input shows the
+// fault too: a hole or flipped facet (InputFlaw) the band ran over that the input has there, or a fault of
+// the same chain's base meshes on the input (a flipped facet the first pass did not reach); then that input
+// error is rethrown as it is. Other errors are rethrown as they are. Called only while `e` is being handled.
+[[noreturn]] void rethrow_on_own_mesh(const RoundingError& e, const MeshTopology& input, const Vec3& picked, const RoundOptions& opt);
 
 // round_edges on a mesh whose rounds `earlier` a first stage made: base facets on them are measured on
 // their exact surfaces (spine.h ExactRound), so a round rolling on around one's end is tangent to it.
