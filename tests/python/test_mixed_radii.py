@@ -16,6 +16,7 @@ chain meeting at it.
 import json
 
 import numpy as np
+from scipy.spatial import cKDTree
 import pytest
 
 import FreeCAD
@@ -297,6 +298,62 @@ def test_a_hole_or_a_flipped_facet_on_the_wall_beside_the_floor_loop_is_refused_
         # the input's fault, named as such (not blamed on the rounds made before the floor's in that call)
         assert refused.value.code == "non_manifold_input" and "(60, 3" in str(refused.value), refused.value
         assert ("a hole in it" if name == "hole" else "flipped facet") in str(refused.value), refused.value
+
+
+def s_profile(r_rim, r_floor, depth, step=0.005):
+    """Points every `step` along the exact section of a square wall `depth` high whose rim (convex, r_rim) and
+    floor (concave, r_floor) are rounded, in (s, z): s across the wall into the pocket, z up from the floor.
+    Where r_rim + r_floor > depth the rounds' bands overlap on the wall: the floor's ball rolls onto the rim's
+    round (its centre r_rim + r_floor from the rim's axis) and the wall between is gone."""
+    rim = np.array([-r_rim, depth - r_rim])  # the rim round's axis
+    floor = np.array([min(r_floor, rim[0] + np.sqrt(max((r_rim + r_floor) ** 2 - (r_floor - rim[1]) ** 2, 0.0))), r_floor])
+    touch = rim + r_rim * (floor - rim) / np.linalg.norm(floor - rim) if floor[0] < r_floor else None
+    def arc(c, r, a0, a1):
+        n = int(np.ceil(abs(a1 - a0) * r / step)) + 1
+        a = np.linspace(a0, a1, n)
+        return c + r * np.stack([np.cos(a), np.sin(a)], axis=1)
+    def line(p, q):
+        return np.linspace(p, q, int(np.ceil(np.linalg.norm(q - p) / step)) + 1)
+    if touch is None:  # the wall between the two bands
+        low_rim, high_floor = np.array([0.0, rim[1]]), np.array([0.0, r_floor])
+        pieces = [line(high_floor, low_rim), arc(floor, r_floor, np.pi, 1.5 * np.pi)]
+        a_rim = 0.0
+    else:
+        a_rim = np.arctan2(*(touch - rim)[::-1])
+        a_floor = np.arctan2(*(touch - floor)[::-1])
+        pieces = [arc(floor, r_floor, a_floor, 1.5 * np.pi)]
+    pieces += [arc(rim, r_rim, a_rim, 0.5 * np.pi), line(np.array([rim[0], depth]), np.array([rim[0] - 5.0, depth])),
+               line(np.array([floor[0], 0.0]), np.array([floor[0] + 5.0, 0.0]))]
+    return np.concatenate(pieces), touch
+
+
+@pytest.mark.parametrize("r_rim, r_floor", [(7.0, 6.0), (7.0, 7.0), (6.5, 5.5)])
+@pytest.mark.parametrize("variant", ["1.8 mm", "cad"])
+def test_a_floor_round_whose_band_runs_onto_the_rim_s_rolls_on_the_rim_round(variant, r_rim, r_floor):
+    """The 12 mm deep square pocket, walls 8, rim r_rim and floor r_floor: where r_rim + r_floor > 12 the two
+    bands overlap on the walls (OCCT's fillet fails there), the rim is made first and the floor's ball rolls onto
+    its round -- the section an S of the two arcs, tangent where they meet. Away from the wall corners (the walls'
+    middle fifths) every vertex within 1.5 mm of the walls' section lies within the floor's tolerance of that exact
+    section, vertices lie where the arcs meet, and the mesh is sound. (6.5 / 5.5: the bands just meet.)"""
+    solid, chain = cases.pocket_all(0.0)()
+    mid = lambda e: e.valueAt(0.5 * (e.FirstParameter + e.LastParameter))  # noqa: E731
+    r_of = lambda e: 8.0 if vertical(e) else r_rim if max(v.Point.z for v in e.Vertexes) > 29 else r_floor  # noqa: E731
+    mesh = cases.mesh_of(solid, **(cases.MESH_VARIANTS["cad"] if variant == "cad" else dict(MaxLength=1.8)))
+    res = MeshRound.round_edges(mesh, [mid(e) for e in chain], [(mid(e), r_of(e)) for e in chain])
+    assert soundness.problems(*reference.mesh_arrays(mesh), *reference.mesh_arrays(res.mesh)) == []
+    P = reference.mesh_arrays(res.mesh)[0]
+    profile, touch = s_profile(r_rim, r_floor, 12.0)
+    assert (touch is not None) == (r_rim + r_floor > 12.0)
+    tree = cKDTree(profile)
+    for axis, wall, into, middle in ((1, 15.0, 1, 40.0), (1, 45.0, -1, 40.0), (0, 20.0, 1, 30.0), (0, 60.0, -1, 30.0)):
+        along = 1 - axis
+        s = (P[:, axis] - wall) * into
+        section = (np.abs(P[:, along] - middle) < 4.0) & (s > -r_rim - 1.5) & (s < r_floor + 1.5) & (P[:, 2] > 17.9)
+        d, _ = tree.query(np.stack([s[section], P[section, 2] - 18.0], axis=1))
+        assert section.sum() > 20 and d.max() <= r_floor / 100, (wall, d.max())
+        if touch is not None:  # the round's rows reach the place where the floor's arc meets the rim's
+            near = np.hypot(s[section] - touch[0], P[section, 2] - 18.0 - touch[1])
+            assert near.min() < 0.5, (wall, near.min())
 
 
 def occt_corner_evolves(case, near):
