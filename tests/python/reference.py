@@ -1,7 +1,8 @@
 """Independent yardstick: how far a rounded mesh is from OCCT's exact fillet, and whether it is a sound mesh.
 
-Everything here is numpy + scipy (cKDTree), vectorised; nothing calls MeshRound.  Distances are exact
-point-to-triangle distances to a triangle set; the exact solids are tessellated 2,000 times finer than r
+Everything here is numpy + scipy (cKDTree), vectorised, and the tests' own point-to-triangle-set distance module
+(_triangle_distance: OCCT's BVH); nothing calls MeshRound.  Distances are exact point-to-triangle distances to a
+triangle set; the exact solids are tessellated 2,000 times finer than r
 (LinearDeflection 5e-4 r), so "exact" means to 5e-4 r, 1/20 of the tolerance r/100.
 `score(case, inp, out, report)` returns every figure of one rounding; see test_accuracy.py for the bounds.
 """
@@ -14,8 +15,8 @@ from scipy.sparse.csgraph import connected_components
 from scipy.spatial import cKDTree
 
 import cases
+from _triangle_distance import Triangles  # built by tools/setup.sh (tests/python/CMakeLists.txt)
 
-CHUNK = 20_000  # points queried at once (each has a handful of candidate triangles)
 SHARP_DEG = 20.0  # an edge of an exact solid is "its own sharp edge" when its faces turn by more
 
 
@@ -71,62 +72,16 @@ def pairs_within(tree, P, radius):
     return rows, cols
 
 
-def ladder_split(T, h):
-    """Triangles T (m, 3, 3) cut into strips across their two longer edges, the strips no wider than h:
-    a sliver of length L becomes ~2L/h pieces (not (L/h)^2 as with uniform refinement)."""
-    L = np.stack([norm(T[:, (i + 1) % 3] - T[:, (i + 2) % 3]) for i in range(3)], axis=1)
-    k = L.argmin(axis=1)  # apex: opposite the shortest edge
-    rows = np.arange(len(T))
-    A, B, C = T[rows, k], T[rows, (k + 1) % 3], T[rows, (k + 2) % 3]  # cyclic order kept
-    n = np.maximum(1, np.ceil(L.max(axis=1) / h)).astype(int)
-    out = [T[n == 1]]
-    for m in np.unique(n[n > 1]):
-        a, b, c = A[n == m], B[n == m], C[n == m]
-        f = np.arange(m + 1)[None, :, None] / m
-        P, Q = a[:, None] + (b - a)[:, None] * f, a[:, None] + (c - a)[:, None] * f  # rungs P_i Q_i
-        tips = np.stack([a, P[:, 1], Q[:, 1]], 1)[:, None]
-        lower = np.stack([P[:, 1:-1], P[:, 2:], Q[:, 1:-1]], 2)
-        upper = np.stack([Q[:, 1:-1], P[:, 2:], Q[:, 2:]], 2)
-        out.append(np.concatenate([tips, lower, upper], 1).reshape(-1, 3, 3))
-    return np.concatenate(out)
-
-
-def small_triangles(V, F, h):
-    """The triangles of (V, F) as a soup of pieces no longer than ~h (two ladder passes: the first
-    cuts along the long edges, the second across the rungs it made)."""
-    return ladder_split(ladder_split(V[F], h), h)
-
-
 class TriangleSet:
-    """Exact distance queries to a triangle set, cut into pieces no longer than h so that a sphere around
-    each piece's centroid is tight: for a point, the upper bound U from the piece of the nearest centroid,
-    then every piece whose centroid lies within U + (largest piece radius) is measured."""
+    """Exact distances to a triangle set: OCCT's BVH over the triangles, searched branch and bound, with the
+    exact point-triangle distance of point_triangle_distance (triangle_distance.cpp, the tests' own module)."""
 
-    def __init__(self, V, F, h):
-        T = small_triangles(V, F, h) if len(F) else np.zeros((0, 3, 3))
-        self.A, self.B, self.C = T[:, 0], T[:, 1], T[:, 2]
-        self.centroids = cen = T.mean(axis=1)
-        self.radii = np.max([norm(X - cen) for X in (self.A, self.B, self.C)], axis=0) if len(T) else np.zeros(0)
-        self.rad = self.radii.max(initial=0.0)
-        self.tree = cKDTree(cen) if len(T) else None
+    def __init__(self, V, F):
+        self._triangles = Triangles(V, np.asarray(F, dtype=np.int64).reshape(-1, 3))
 
-    def _measure(self, P, rows, tri):
-        return point_triangle_distance(P[rows], self.A[tri], self.B[tri], self.C[tri])
-
-    def distance(self, P, cap=np.inf):
-        """Exact distances; where one exceeds `cap` it is only known to exceed it (the search stops
-        there, so a wildly wrong mesh cannot make the measurement slow)."""
-        out = np.full(len(P), np.inf)
-        if len(P) == 0 or self.tree is None:
-            return out
-        out = self._measure(P, np.arange(len(P)), self.tree.query(P)[1])
-        for s in range(0, len(P), CHUNK):
-            reach = np.minimum(out[s:s + CHUNK], cap) + self.rad + 1e-9
-            rows, cols = pairs_within(self.tree, P[s:s + CHUNK], reach)
-            near = norm(P[s + rows] - self.centroids[cols]) <= reach[rows] - self.rad + self.radii[cols]
-            rows, cols = rows[near], cols[near]  # each piece's own sphere, not the largest one
-            np.minimum.at(out, s + rows, self._measure(P, s + rows, cols))
-        return out
+    def distance(self, P):
+        """Each point's distance to the nearest triangle (inf for an empty set)."""
+        return self._triangles.distance(np.asarray(P, dtype=float).reshape(-1, 3))
 
 
 # -------------------------------------------------------------------------------------- the chain
@@ -172,7 +127,7 @@ def near_triangles(V, F, chain, within):
 def exact_skin(shape, case, chain, within):
     """TriangleSet of an exact solid's skin near the chain."""
     V, F = shape_arrays(shape, 5e-4 * case.r_max)
-    return TriangleSet(V, near_triangles(V, F, chain, within), 0.1 * case.r_max)  # small: fans of slivers
+    return TriangleSet(V, near_triangles(V, F, chain, within))
 
 
 def face_samples(face, step, keep=None):
@@ -201,7 +156,7 @@ def round_samples(case):
 
 def surface_samples(V, F):
     """Vertices, edge midpoints and centroids of a triangle mesh (each once): where a chordal error shows."""
-    E = np.unique(np.sort(np.concatenate([F[:, [0, 1]], F[:, [1, 2]], F[:, [2, 0]]]), axis=1), axis=0)
+    E = unique_pairs(np.sort(np.concatenate([F[:, [0, 1]], F[:, [1, 2]], F[:, [2, 0]]]), axis=1))
     return np.concatenate([V[np.unique(F)], V[E].mean(axis=1), V[F].mean(axis=1)])
 
 
@@ -220,19 +175,29 @@ def sharp_edge_points(shape, step):
 
 
 # ------------------------------------------------------------------------------------ mesh topology
+def unique_pairs(E, **options):
+    """np.unique(E, axis=0, **options) for rows of two non-negative ids, sorted the same way (each row one
+    int64 key: a sort of numbers, many times faster than numpy's sort of rows)."""
+    n = int(E.max(initial=0)) + 1
+    out = np.unique(E[:, 0].astype(np.int64) * n + E[:, 1], **options)
+    keys = out[0] if options else out
+    pairs = np.stack([keys // n, keys % n], axis=1)
+    return (pairs,) + tuple(out[1:]) if options else pairs
+
+
 def edge_table(F):
     """Undirected edges (sorted vertex pairs) with their facet count and up to two facets;
     also how many directed edges occur twice (neighbours whose orientations disagree)."""
     directed = np.concatenate([F[:, [0, 1]], F[:, [1, 2]], F[:, [2, 0]]])
     facet = np.tile(np.arange(len(F)), 3)
     key = np.sort(directed, axis=1)
-    edges, inv, count = np.unique(key, axis=0, return_inverse=True, return_counts=True)
+    edges, inv, count = unique_pairs(key, return_inverse=True, return_counts=True)
     inv = inv.ravel()
     order = np.argsort(inv, kind="stable")
     start = np.searchsorted(inv[order], np.arange(len(edges)))
     first = facet[order][start]
     second = np.where(count == 2, facet[order][np.minimum(start + 1, len(order) - 1)], -1)
-    twice = len(directed) - len(np.unique(directed, axis=0))
+    twice = len(directed) - len(unique_pairs(directed))
     return dict(edges=edges, count=count, first=first, second=second, misoriented=int(twice))
 
 
@@ -339,20 +304,18 @@ def input_tessellation_error(case, V0, F0, geo):
     P = surface_samples(V0, near)
     there = geo["sharp"].distance(P[chain.distance(P, 2 * r) <= 2 * r]).max(initial=0)
     S = geo["sharp_samples"]
-    back = TriangleSet(V0, near, 0.2 * r).distance(S).max(initial=0)
+    back = TriangleSet(V0, near).distance(S).max(initial=0)
     return float(max(there, back))
 
 
 def deviation_samples(case, geo, V1, F1, made, reach):
     """Both ways, relative to r: (points on the made facets, their distance to the exact filleted solid),
-    (points on the exact rounds, their distance to the result near the chain). A distance over 0.1 (ten
-    tolerances) is only bounded: it lies between 0.1 and the figure given."""
+    (points on the exact rounds, their distance to the result near the chain)."""
     r, chain = case.r_max, geo["chain"]
     P = surface_samples(V1, F1[made])
     P = P[chain.distance(P, (reach + 1) * r) <= (reach + 1) * r]  # made facets beyond: see far_facets_added
     band = F1[chain.facet_distance(V1, F1, (reach + 1) * r) <= (reach + 1) * r]
-    return ((P, geo["filleted"].distance(P, cap=0.1 * r) / r),
-            (geo["rounds"], TriangleSet(V1, band, 0.2 * r).distance(geo["rounds"], cap=0.1 * r) / r))
+    return ((P, geo["filleted"].distance(P) / r), (geo["rounds"], TriangleSet(V1, band).distance(geo["rounds"]) / r))
 
 
 def accuracy(case, geo, V0, F0, V1, F1, made, reach):

@@ -138,7 +138,7 @@ def assert_original_radius_returns_the_input(old, mesh, r0, deviation=DEVIATION)
     chain = reference.Chain(old)
     P = reference.surface_samples(V1, F1)
     P = P[chain.distance(P) <= 2 * r0]
-    input_facets = reference.TriangleSet(V0, F0, 0.2 * r0)
+    input_facets = reference.TriangleSet(V0, F0)
     own = input_facets.distance(P).max()
     geo = reference.exact_geometry(old, 3.0)
     sag = input_facets.distance(geo["rounds"]).max()  # the input's own chordal error on its rounds
