@@ -1,7 +1,7 @@
 """Independent yardstick: how far a rounded mesh is from OCCT's exact fillet, and whether it is a sound mesh.
 
 Everything here is numpy + scipy (cKDTree), vectorised, and the tests' own point-to-triangle-set distance module
-(_triangle_distance: OCCT's BVH); nothing calls MeshRound.  Distances are exact point-to-triangle distances to a
+(_yardstick, yardstick.cpp: OCCT's BVH and 2D face classifier); nothing calls MeshRound.  Distances are exact point-to-triangle distances to a
 triangle set; the exact solids are tessellated 2,000 times finer than r
 (LinearDeflection 5e-4 r), so "exact" means to 5e-4 r, 1/20 of the tolerance r/100.
 `score(case, inp, out, report)` returns every figure of one rounding; see test_accuracy.py for the bounds.
@@ -15,7 +15,7 @@ from scipy.sparse.csgraph import connected_components
 from scipy.spatial import cKDTree
 
 import cases
-from _triangle_distance import Triangles  # built by tools/setup.sh (tests/python/CMakeLists.txt)
+from _yardstick import Triangles, in_domain, surface_points  # built by tools/setup.sh (tests/python/CMakeLists.txt, yardstick.cpp)
 
 SHARP_DEG = 20.0  # an edge of an exact solid is "its own sharp edge" when its faces turn by more
 
@@ -74,7 +74,7 @@ def pairs_within(tree, P, radius):
 
 class TriangleSet:
     """Exact distances to a triangle set: OCCT's BVH over the triangles, searched branch and bound, with the
-    exact point-triangle distance of point_triangle_distance (triangle_distance.cpp, the tests' own module)."""
+    exact point-triangle distance of point_triangle_distance (yardstick.cpp, the tests' own module)."""
 
     def __init__(self, V, F):
         self._triangles = Triangles(V, np.asarray(F, dtype=np.int64).reshape(-1, 3))
@@ -140,13 +140,14 @@ def face_samples(face, step, keep=None):
     lv = length([face.valueAt(um, v) for v in np.linspace(v0, v1, 33)])
     us = np.linspace(u0, u1, int(np.ceil(lu / step)) + 1)
     vs = np.linspace(v0, v1, int(np.ceil(lv / step)) + 1)
-    grid = [(u, v) for u in us for v in vs]
-    P = np.array([tuple(face.valueAt(u, v)) for u, v in grid]).reshape(-1, 3)
+    grid = np.stack(np.meshgrid(us, vs, indexing="ij"), axis=-1).reshape(-1, 2)
+    brep = face.exportBrepToString()
+    P = surface_points(brep, grid)  # as face.valueAt(u, v), for the whole grid at once
     wanted = keep(P) if keep is not None else np.ones(len(P), bool)
     if abs(face.Surface.toShape(u0, u1, v0, v1).Area - face.Area) <= 1e-7 * face.Area:
         return P[wanted]  # the face is its whole (u, v) rectangle: every grid point lies in it
-    inside = [i for i in np.flatnonzero(wanted) if face.isPartOfDomain(*grid[i])]
-    return P[inside]
+    ids = np.flatnonzero(wanted)  # as face.isPartOfDomain(u, v), OCCT's classifier made once for them all
+    return P[ids[in_domain(brep, grid[ids])]]
 
 
 def round_samples(case):

@@ -1,19 +1,32 @@
-// The yardstick's exact distances from points to a set of triangles (reference.py TriangleSet): OCCT's BVH
-// over the triangles' boxes, searched branch and bound, and an exact point-triangle distance -- the plane's
-// where the point projects inside the triangle, else the nearest of its three sides (also for zero-area
-// triangles). Test code only, and none of the engine's own: the yardstick stays independent of what it
-// measures.
+// The yardstick's (reference.py) two slow measures, in C++ on OCCT:
+// - Triangles: exact distances from points to a set of triangles (reference.py TriangleSet): OCCT's BVH over
+//   the triangles' boxes, searched branch and bound, and an exact point-triangle distance -- the plane's where
+//   the point projects inside the triangle, else the nearest of its three sides (also for zero-area triangles);
+// - surface_points, in_domain: a CAD face's points at (u, v), and which (u, v) lie in its trimmed domain
+//   (reference.py face_samples), for a whole grid at once.
+// Test code only, and none of the engine's own: the yardstick stays independent of what it measures.
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
 
+#include <BRepAdaptor_Surface.hxx>
+#include <BRepTools.hxx>
+#include <BRepTopAdaptor_FClass2d.hxx>
+#include <BRep_Builder.hxx>
 #include <BVH_BoxSet.hxx>
 #include <BVH_Distance.hxx>
 #include <BVH_Tools.hxx>
+#include <Precision.hxx>
+#include <TopoDS.hxx>
+#include <TopoDS_Face.hxx>
+#include <gp_Pnt.hxx>
+#include <gp_Pnt2d.hxx>
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <sstream>
 #include <stdexcept>
+#include <string>
 #include <vector>
 
 namespace py = pybind11;
@@ -103,13 +116,58 @@ class Triangles {
   Boxes set_;
 };
 
+TopoDS_Face read_face(const std::string& brep) {
+  TopoDS_Shape shape;
+  std::istringstream in(brep);
+  BRep_Builder builder;
+  BRepTools::Read(shape, in, builder);
+  if (shape.IsNull() || shape.ShapeType() != TopAbs_FACE) throw std::invalid_argument("not a face's BRep");
+  return TopoDS::Face(shape);
+}
+
+using UVArray = py::array_t<double, py::array::c_style | py::array::forcecast>;
+
+// The points of a face's surface at (u, v) (as Part.Face.valueAt: the face's surface adaptor, its placement
+// included).
+py::array_t<double> surface_points(const std::string& brep, UVArray UV) {
+  if (UV.ndim() != 2 || UV.shape(1) != 2) throw std::invalid_argument("UV (k, 2)");
+  const BRepAdaptor_Surface surface(read_face(brep));
+  const auto uv = UV.unchecked<2>();
+  py::array_t<double> out({uv.shape(0), py::ssize_t(3)});
+  auto o = out.mutable_unchecked<2>();
+  for (py::ssize_t i = 0; i < uv.shape(0); ++i) {
+    const gp_Pnt p = surface.Value(uv(i, 0), uv(i, 1));
+    o(i, 0) = p.X(), o(i, 1) = p.Y(), o(i, 2) = p.Z();
+  }
+  return out;
+}
+
+// Which (u, v) points lie in a face's trimmed domain: OCCT's 2D classifier of the face's wires, made once for
+// all the points (Part.Face.isPartOfDomain makes the same classifier, with the same tolerance, for each point).
+py::array_t<bool> in_domain(const std::string& brep, UVArray UV) {
+  if (UV.ndim() != 2 || UV.shape(1) != 2) throw std::invalid_argument("UV (k, 2)");
+  const BRepTopAdaptor_FClass2d classifier(read_face(brep), Precision::Confusion());
+  const auto uv = UV.unchecked<2>();
+  py::array_t<bool> out(uv.shape(0));
+  auto o = out.mutable_unchecked<1>();
+  for (py::ssize_t i = 0; i < uv.shape(0); ++i) {
+    const TopAbs_State state = classifier.Perform(gp_Pnt2d(uv(i, 0), uv(i, 1)));
+    o(i) = state == TopAbs_IN || state == TopAbs_ON;
+  }
+  return out;
+}
+
 }  // namespace
 
-PYBIND11_MODULE(_triangle_distance, m) {
-  m.doc() = "Exact point to triangle set distances for the tests' yardstick (OCCT's BVH).";
+PYBIND11_MODULE(_yardstick, m) {
+  m.doc() = "The tests' yardstick's exact measures on OCCT: point to triangle set distances, face domains.";
   py::class_<Triangles>(m, "Triangles")
       .def(py::init<py::array_t<double, py::array::c_style | py::array::forcecast>,
                     py::array_t<long long, py::array::c_style | py::array::forcecast>>(),
            py::arg("V"), py::arg("F"))
       .def("distance", &Triangles::distance, py::arg("P"));
+  m.def("surface_points", &surface_points, py::arg("brep"), py::arg("UV"),
+        "The points (k, 3) at the rows (u, v) of UV of the face given as a BRep string (as face.valueAt).");
+  m.def("in_domain", &in_domain, py::arg("brep"), py::arg("UV"),
+        "Which rows (u, v) of UV lie in the trimmed domain of the face given as a BRep string (face.exportBrepToString()).");
 }
