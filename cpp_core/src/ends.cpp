@@ -580,10 +580,14 @@ EndPlan plan_ends(const SpineContext& ctx, const RadiusLaw& law, const NetworkPa
     // mesh's edge)
     if (first_refusal && !open) std::rethrow_exception(first_refusal);
   }
-  if (setback[0] + setback[1] > (at_sphere ? kMaxSetbackShareAtSphere : kMaxSetbackShare) * L)
+  const double needed = setback[0] + setback[1];
+  if (needed > (at_sphere ? kMaxSetbackShareAtSphere : kMaxSetbackShare) * L) {
+    // (a setback many times the chain: an end face that runs nearly along the chain, its ball's poles far past it)
+    const std::string how = needed < 10 * L ? format_number(needed) + " mm of its " + format_number(L) + " mm"
+                                            : "an end face there runs nearly along it, " + format_number(L) + " mm long";
     throw RoundingError(ErrorCode::RadiusTooLarge, "the chain through " + format_point(chain.point_at(0.5 * L)) + " is too short for its round to "
-                        "run on to the end faces leaning over it (" + format_number(setback[0] + setback[1]) + " mm of its " +
-                        format_number(L) + " mm); try a smaller radius");
+                        "run on to the end faces leaning over it (" + how + "); try a smaller radius");
+  }
   return plan;
 }
 

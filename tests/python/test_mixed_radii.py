@@ -14,6 +14,7 @@ chain meeting at it.
   are refused naming the vertex, the input intact, and plan_network says so before any rounding.
 """
 import json
+import re
 
 import numpy as np
 from scipy.spatial import cKDTree
@@ -354,6 +355,31 @@ def test_a_floor_round_whose_band_runs_onto_the_rim_s_rolls_on_the_rim_round(var
         if touch is not None:  # the round's rows reach the place where the floor's arc meets the rim's
             near = np.hypot(s[section] - touch[0], P[section, 2] - 18.0 - touch[1])
             assert near.min() < 0.5, (wall, near.min())
+
+
+@pytest.mark.parametrize("variant", ["1.8 mm", "cad"])
+@pytest.mark.parametrize("r_rim, r_walls, expected", [
+    (3.0, 14.9, None), (3.0, 15.0, ("radius_too_large", "surface_failed")), (3.0, 15.1, "radius_too_large"),  # 30 wide
+    (11.9, 14.0, "sound"), (12.0, 14.0, "radius_too_large"), (12.1, 14.0, "radius_too_large")])  # and 12 deep
+def test_radii_at_what_the_pocket_holds_round_soundly_or_are_refused_by_name(variant, r_rim, r_walls, expected):
+    """The square pocket's rim and wall corners with radii just below, at and above what its width (wall corners
+    of 15 meet across the 30 mm short side) and its depth (a rim round of 12 takes the whole wall) hold: a sound
+    mesh or a refusal naming the cause with figures a user can read (a setback of 2e17 mm was printed at 15), the
+    input intact. (None: either, but never a broken mesh; at exactly 15 the CAD mesh's profiles are refused as
+    changing too fast, surface_failed.)"""
+    solid, chain = cases.pocket_rim_walls(0.0)()
+    mid = lambda e: e.valueAt(0.5 * (e.FirstParameter + e.LastParameter))  # noqa: E731
+    mesh = cases.mesh_of(solid, **(cases.MESH_VARIANTS["cad"] if variant == "cad" else dict(MaxLength=1.8)))
+    before = mesh.Topology
+    try:
+        res = MeshRound.round_edges(mesh, [mid(e) for e in chain], [(mid(e), r_walls if vertical(e) else r_rim) for e in chain])
+    except MeshRound.RoundingError as e:
+        assert expected is None or e.code in ((expected,) if isinstance(expected, str) else expected), e
+        assert all(float(x) < 1000 for x in re.findall(r"\d+(?:\.\d+)?(?:e[+-]?\d+)?", str(e))), e
+        assert mesh.Topology == before
+        return
+    assert expected in (None, "sound")
+    assert soundness.problems(*reference.mesh_arrays(mesh), *reference.mesh_arrays(res.mesh)) == []
 
 
 def occt_corner_evolves(case, near):
