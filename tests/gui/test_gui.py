@@ -211,6 +211,7 @@ def test_progress_indicator_on_long_runs(observed):
     progress = observed["progress"]  # a run that lasts until the bar shows, 10 s at most
     # the status bar may show the view's own messages (e.g. its size) before the rounding's
     assert any("Rounding edges of a long chain" in m for m in progress["messages"]), progress["messages"]
+    assert not progress["bar_before"]  # no bar left over from a step before
     assert progress["bar_seen"] and not progress["bar_after"]  # FreeCAD's bar, shown after its 2 s delay
     assert progress["bar_delay"] >= 1.9  # not at once: short runs stay free of it
     assert progress["samples"] >= 20  # the window processed events all along (a sample every 50 ms)
