@@ -15,7 +15,7 @@ ctest --test-dir build --output-on-failure -j2
 # boundary's and the deck readers' targets must come back clean; the engine's two (round_edges, and change_radius on
 # its results) still find the open faults listed in tests/fuzz/regressions/README.md, so their passes print what they
 # find without failing the suite.
-"$ROOT/tools/fuzz.sh" 30 fuzz_arrays
-"$ROOT/tools/fuzz.sh" 30 fuzz_decks
-"$ROOT/tools/fuzz.sh" 30 fuzz_round || echo "fuzz_round: the findings above are kept in fuzz-out/fuzz_round/artifacts (open faults)"
-"$ROOT/tools/fuzz.sh" 30 fuzz_reround || echo "fuzz_reround: the findings above are kept in fuzz-out/fuzz_reround/artifacts (open faults)"
+# (Two targets to a call: their builds share the two cores.)
+"$ROOT/tools/fuzz.sh" 30 fuzz_arrays fuzz_decks
+"$ROOT/tools/fuzz.sh" 30 fuzz_round fuzz_reround ||
+  echo "fuzz_round, fuzz_reround: the findings above are kept in fuzz-out/<target>/artifacts (open faults)"

@@ -273,9 +273,8 @@ _SOURCE = hashlib.sha1(b"".join(open(m.__file__ if m else __file__, "rb").read()
 
 def exact_geometry(case, reach):
     """Per case (kept for the session): the chain, the exact filleted and sharp skins near it, samples on the
-    rounds and on the sharp faces at the chain, and the filleted solid's own sharp edges.  The samples (slow:
-    OCCT's trimmed-domain test point by point) are also kept on disk (cases.kept_on_disk); the skins are cut
-    anew from the solids' stored tessellations."""
+    rounds and on the sharp faces at the chain, and the filleted solid's own sharp edges.  The samples are also
+    kept on disk (cases.kept_on_disk); the skins are cut anew from the solids' stored tessellations."""
     key = (case.name, reach)
     if key not in _CACHE:
         chain, r = Chain(case), case.r_max
