@@ -22,6 +22,9 @@ export ASAN_OPTIONS="${ASAN_OPTIONS:-detect_leaks=0:abort_on_error=0}" UBSAN_OPT
 echo "== ctest (ASan + UBSan)"
 ctest --test-dir "$BUILD" --output-on-failure -j1 || status=1
 (($#)) || set -- "$ROOT/tests/python/test_api.py" "$ROOT/tests/python/test_bad_mesh.py"
+# The tests' yardstick module (tests/python/_yardstick) is the normal build's (a sanitized one would not load
+# without the preload): made by tools/setup.sh when it is not there yet.
+compgen -G "$ROOT/tests/python/_yardstick*.so" > /dev/null || "$ROOT/tools/setup.sh" > /dev/null
 echo "== pytest with the sanitized module: $*"
 # Left out here, run in the normal suite only: tests that start freecadcmd or the demo (a child inherits the
 # preloaded sanitizer runtime and needs minutes to start under it), tests of the command line run as a child
