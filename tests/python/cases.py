@@ -92,6 +92,11 @@ MESH_VARIANTS = {
 
 
 # ------------------------------------------------------------------------------------------- the solids
+def edge_middle(e):
+    """The point halfway along an edge's parameter range (where a user picks it)."""
+    return e.valueAt(0.5 * (e.FirstParameter + e.LastParameter))
+
+
 def edges_where(shape, test, samples=5):
     """Edges of `shape` all of whose sample points (ends included) satisfy test(point)."""
     def sample(e):
@@ -127,7 +132,7 @@ def tilted(builder, z_deg=25.0, x_deg=17.5):
         turn.rotateZ(math.radians(z_deg))
         turn.rotateX(math.radians(x_deg))
         turned = solid.transformGeometry(turn)
-        mids = [turn.multiply(e.valueAt(0.5 * (e.FirstParameter + e.LastParameter))) for e in chain]
+        mids = [turn.multiply(edge_middle(e)) for e in chain]
         return turned, [e for e in turned.Edges if any(e.distToShape(Part.Vertex(m))[0] < TOL for m in mids)]
     return build
 
@@ -452,7 +457,7 @@ class Case:
             self.radius = []
             for e in self.chain:
                 r0, r1 = self.edge_radius(e)
-                self.radius += ([(e.valueAt(0.5 * (e.FirstParameter + e.LastParameter)), r0)] if r0 == r1 else
+                self.radius += ([(edge_middle(e), r0)] if r0 == r1 else
                                 [(e.valueAt(e.FirstParameter), r0), (e.valueAt(e.LastParameter), r1)])
         elif law is None:
             self.radius = radius
@@ -472,7 +477,7 @@ class Case:
         """What a user picks: one point, or where the chain's edges meet at corners (a turn sharper
         than the feature angle), the middle of every edge: each is a chain of its own, rounded together."""
         if self.network or (len(self.chain) > 1 and self.corners):
-            return [e.valueAt(0.5 * (e.FirstParameter + e.LastParameter)) for e in self.chain]
+            return [edge_middle(e) for e in self.chain]
         return [self.seed]
 
     @property

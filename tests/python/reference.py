@@ -1,8 +1,8 @@
 """Independent yardstick: how far a rounded mesh is from OCCT's exact fillet, and whether it is a sound mesh.
 
-Everything here is numpy + scipy (cKDTree), vectorised, and the tests' own point-to-triangle-set distance module
-(_yardstick, yardstick.cpp: OCCT's BVH and 2D face classifier); nothing calls MeshRound.  Distances are exact point-to-triangle distances to a
-triangle set; the exact solids are tessellated 2,000 times finer than r
+Everything here is numpy + scipy (cKDTree), vectorised, and the tests' own module _yardstick (yardstick.cpp:
+OCCT's BVH and 2D face classifier); nothing calls MeshRound.  Distances are exact point-to-triangle distances
+to a triangle set; the exact solids are tessellated 2,000 times finer than r
 (LinearDeflection 5e-4 r), so "exact" means to 5e-4 r, 1/20 of the tolerance r/100.
 `score(case, inp, out, report)` returns every figure of one rounding; see test_accuracy.py for the bounds.
 """

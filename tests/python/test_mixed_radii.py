@@ -131,7 +131,7 @@ def test_a_whole_pocket_with_its_rim_apart(variant):
 
 def box_top_corner_seeds():
     solid, edges = cases.box_top_corner()
-    return solid, edges, [e.valueAt(0.5 * (e.FirstParameter + e.LastParameter)) for e in edges]
+    return solid, edges, [cases.edge_middle(e) for e in edges]
 
 
 def test_a_law_into_a_mitre_rounds_where_it_holds_its_corner_radius():
@@ -337,7 +337,7 @@ def test_a_floor_round_whose_band_runs_onto_the_rim_s_rolls_on_the_rim_round(var
     middle fifths) every vertex within 1.5 mm of the walls' section lies within the floor's tolerance of that exact
     section, vertices lie where the arcs meet, and the mesh is sound. (6.5 / 5.5: the bands just meet.)"""
     solid, chain = cases.pocket_all(0.0)()
-    mid = lambda e: e.valueAt(0.5 * (e.FirstParameter + e.LastParameter))  # noqa: E731
+    mid = cases.edge_middle
     r_of = lambda e: 8.0 if vertical(e) else r_rim if max(v.Point.z for v in e.Vertexes) > 29 else r_floor  # noqa: E731
     mesh = cases.mesh_of(solid, **(cases.MESH_VARIANTS["cad"] if variant == "cad" else dict(MaxLength=1.8)))
     res = MeshRound.round_edges(mesh, [mid(e) for e in chain], [(mid(e), r_of(e)) for e in chain])
@@ -368,7 +368,7 @@ def test_radii_at_what_the_pocket_holds_round_soundly_or_are_refused_by_name(var
     input intact. (None: either, but never a broken mesh; at exactly 15 the CAD mesh's profiles are refused as
     changing too fast, surface_failed.)"""
     solid, chain = cases.pocket_rim_walls(0.0)()
-    mid = lambda e: e.valueAt(0.5 * (e.FirstParameter + e.LastParameter))  # noqa: E731
+    mid = cases.edge_middle
     mesh = cases.mesh_of(solid, **(cases.MESH_VARIANTS["cad"] if variant == "cad" else dict(MaxLength=1.8)))
     before = mesh.Topology
     try:
@@ -459,7 +459,7 @@ SPHERE_CORNER_REFUSED = [  # (the box corner's three edges' radii, whichever edg
 def test_radii_that_differ_at_a_sphere_corner_otherwise_are_refused_naming_the_corner(radii, says):
     solid, edges = cases.box_corner()
     mesh = cases.mesh_of(solid, MaxLength=2.0)
-    seeds = [e.valueAt(0.5 * (e.FirstParameter + e.LastParameter)) for e in edges]
+    seeds = [cases.edge_middle(e) for e in edges]
     law = [(s, r) for s, r in zip(seeds, radii)]
     before = mesh.Topology
     with pytest.raises(MeshRound.RoundingError) as err:
@@ -485,7 +485,7 @@ def test_a_larger_round_off_square_to_the_face_the_others_share_is_refused():
 def test_one_radius_at_a_sphere_corner_is_the_ball():
     solid, edges = cases.box_corner()
     mesh = cases.mesh_of(solid, MaxLength=2.0)
-    seeds = [e.valueAt(0.5 * (e.FirstParameter + e.LastParameter)) for e in edges]
+    seeds = [cases.edge_middle(e) for e in edges]
     res = MeshRound.round_edges(mesh, seeds, [(s, 5.0) for s in seeds])
     assert [(c["kind"], c["radius"]) for c in res.report["corners"]] == [("sphere", 5.0)]
 
@@ -498,7 +498,7 @@ def test_the_command_line_gives_each_chain_its_radius(tmp_path):
     cases.mesh_of(solid, MaxLength=2.5).write(str(src))
     args = []
     for e in edges:
-        p = e.valueAt(0.5 * (e.FirstParameter + e.LastParameter))
+        p = cases.edge_middle(e)
         xyz = f"{p.x:g},{p.y:g},{p.z:g}"
         args += ["--seed", xyz, "--radius-at", f"{xyz}:{2 if vertical(e) else 3}"]
     report = tmp_path / "report.json"
