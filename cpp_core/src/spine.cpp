@@ -220,7 +220,6 @@ ProfileStation fit_station(const SpineContext& ctx, double s, double r, StationF
   const SharpChain& chain = ctx.chain;
   const Vec3 e = chain.point_at(s), t = chain.tangent_at(s);
   // Local wedge of the two facets at this chain edge: the start of Newton and the side of the ball.
-  double local;
   int seg = 0;
   {
     const int n = int(chain.points.size());
@@ -228,7 +227,7 @@ ProfileStation fit_station(const SpineContext& ctx, double s, double r, StationF
     for (int i = 0; i < chain.num_edges(); ++i) {
       double tt;
       const double d = (closest_point_on_segment(e, chain.points[i], chain.points[(i + 1) % n], &tt) - e).norm();
-      if (d < best) best = d, seg = i, local = tt;
+      if (d < best) best = d, seg = i;
     }
   }
   ProfileStation st;
