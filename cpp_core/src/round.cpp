@@ -530,13 +530,21 @@ RoundResult round_edges_after(const Points& V, const Triangles& F, const std::ve
     blend_sphere_corner(cur_V, cur_F, corner, tol, chains[k], chain_options[k].reach * corner.radius, step);
     apply_step(step, false);
   }
+  bool remeshed = false;
   if (passes > 1) {
     delta = delta_from_lineage(V, F, cur_V, cur_F, lineage);
     if (remesh_flat_patches(V, F, delta, within_reach_of(chains, chain_options))) apply_delta(V, F, delta, cur_V, cur_F);
+  } else if (result.report.thin_facets > 0 && remesh_flat_patches(V, F, delta, within_reach_of(chains, chain_options))) {
+    // One chain's thin facets on flat ground (a CAD face's fan from its far corner to the band's corner where
+    // the round ends on it): its flat patches meshed again whole, as a network's are; its figures follow.
+    remeshed = true;
+    ChainReport& own = result.chains[0].report;
+    result.report.facets_removed = own.facets_removed = int(delta.removed.size());
+    result.report.facets_added = own.facets_added = int(delta.added.size());
   }
   // Later rounds and corner patches replace facets that earlier rounds made (and counted): the new facets
   // are counted again, within the chains' reach.
-  if (std::any_of(network.begin(), network.end(), [](const NetworkPart& net) { return !net.corners.empty(); })) {
+  if (remeshed || std::any_of(network.begin(), network.end(), [](const NetworkPart& net) { return !net.corners.empty(); })) {
     if (passes == 1) apply_delta(V, F, delta, cur_V, cur_F);
     Vec3 lo = Vec3::Constant(INFINITY), hi = Vec3::Constant(-INFINITY);
     double reach = 0;
@@ -547,6 +555,11 @@ RoundResult round_edges_after(const Points& V, const Triangles& F, const std::ve
     recount_new_facets(V, F, cur_V, cur_F, lo.array() - 2 * reach, hi.array() + 2 * reach, &result.report.thin_facets,
                        &result.report.min_new_angle_deg);
     result.report.cusp_facets = std::min(result.report.cusp_facets, result.report.thin_facets);  // (a later round's cut)
+    if (remeshed) {  // (one chain: its own figures are the call's)
+      ChainReport& own = result.chains[0].report;
+      own.thin_facets = result.report.thin_facets, own.cusp_facets = result.report.cusp_facets;
+      result.report.thin_facets_short_of_room = own.reach_for_room > 0 ? own.thin_facets : 0;
+    }
     std::vector<double> radii;
     for (const RoundOptions& o : chain_options) radii.push_back(o.max_radius());
     result.report.corners = report_corners(cur_V, cur_F, network, spheres, result.chains, radii);
