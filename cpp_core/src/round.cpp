@@ -530,11 +530,27 @@ RoundResult round_edges_after(const Points& V, const Triangles& F, const std::ve
     blend_sphere_corner(cur_V, cur_F, corner, tol, chains[k], chain_options[k].reach * corner.radius, step);
     apply_step(step, false);
   }
+  // Flat patches of the made facets with one under 10 degrees meshed again whole (improve.h), the result then
+  // checked as any (guard.h): one that fails is not taken, the rounds stay as they were made.
+  auto remesh = [&]() {
+    MeshDelta made = delta;
+    if (!remesh_flat_patches(V, F, delta, within_reach_of(chains, chain_options))) return false;
+    double reach = 0, tol = INFINITY;
+    for (const RoundOptions& o : chain_options) reach = std::max(reach, o.reach * o.max_radius()), tol = std::min(tol, o.effective_tolerance());
+    try {
+      check_result(edit_of(input, delta), chains[0], reach, tol, chains.size() > 1 ? &chains : nullptr);
+      return true;
+    } catch (const RoundingError& e) {
+      if (e.code == ErrorCode::Cancelled) throw;
+      delta = std::move(made);
+      return false;
+    }
+  };
   bool remeshed = false;
   if (passes > 1) {
     delta = delta_from_lineage(V, F, cur_V, cur_F, lineage);
-    if (remesh_flat_patches(V, F, delta, within_reach_of(chains, chain_options))) apply_delta(V, F, delta, cur_V, cur_F);
-  } else if (result.report.thin_facets > 0 && remesh_flat_patches(V, F, delta, within_reach_of(chains, chain_options))) {
+    if (remesh()) apply_delta(V, F, delta, cur_V, cur_F);
+  } else if (result.report.thin_facets > 0 && remesh()) {
     // One chain's thin facets on flat ground (a CAD face's fan from its far corner to the band's corner where
     // the round ends on it): its flat patches meshed again whole, as a network's are; its figures follow.
     remeshed = true;
