@@ -243,28 +243,63 @@ ImproveStats remesh_flat_patches(MeshEdit& edit, const std::vector<char>& made, 
   return stats;
 }
 
-bool remesh_flat_patches(const Points& V, const Triangles& F, MeshDelta& delta, const std::function<bool(const Vec3&)>& admit) {
+bool remesh_flat_patches(const MeshTopology& input, MeshDelta& delta, const std::function<bool(const Vec3&)>& admit) {
   // Most calls make no facet under kThinDeg: they pay for this look at the facets made, not for the whole mesh.
+  const int n = input.num_vertices();
   std::unordered_map<int, Vec3> moved;
   for (size_t i = 0; i < delta.moved.size(); ++i) moved[delta.moved[i]] = delta.moved_to[i];
   auto point = [&](int v) -> Vec3 {
-    if (v >= delta.input_vertices) return delta.new_points[size_t(v - delta.input_vertices)];
+    if (v >= n) return delta.new_points[size_t(v - n)];
     auto it = moved.find(v);
-    return it != moved.end() ? it->second : Vec3(V.row(v).transpose());
+    return it != moved.end() ? it->second : input.point(v);
   };
   const double thin = kThinDeg * M_PI / 180;
   if (std::none_of(delta.added.begin(), delta.added.end(), [&](const Tri& t) { return smallest_angle(point(t[0]), point(t[1]), point(t[2])) < thin; }))
     return false;
-  Points V1;
-  Triangles F1;
-  StepOrigin origin;
-  apply_delta(V, F, delta, V1, F1, &origin);
-  const MeshTopology mesh(V1, F1);
-  std::vector<char> made(size_t(mesh.num_facets()));
-  for (size_t f = 0; f < made.size(); ++f) made[f] = origin.facet[f] < 0;
-  MeshEdit edit(mesh);
-  if (remesh_flat_patches(edit, made, [&](int v) { return origin.vertex[size_t(v)] < 0; }, admit).patches_remeshed == 0) return false;
-  delta = delta_through(V, F, V1, F1, origin, delta_from_edit(edit));
+  // The band alone as a mesh: the facets made, then the kept input facets around their vertices (all the
+  // facets an edge between two of those vertices can have), each vertex known by its id in the result.
+  std::vector<Tri> facets(delta.added.begin(), delta.added.end());
+  {
+    const std::unordered_set<int> removed(delta.removed.begin(), delta.removed.end());
+    std::unordered_set<int> around;
+    for (const Tri& t : delta.added)
+      for (int v : t)
+        if (v < n)
+          for (const int* f = input.facets_begin(v); f != input.facets_end(v); ++f)
+            if (!removed.count(*f) && around.insert(*f).second) facets.push_back({input.F(*f, 0), input.F(*f, 1), input.F(*f, 2)});
+  }
+  std::unordered_map<int, int> local;
+  std::vector<int> global;
+  for (Tri& t : facets)
+    for (int& v : t) {
+      auto [it, fresh] = local.emplace(v, int(global.size()));
+      if (fresh) global.push_back(v);
+      v = it->second;
+    }
+  Points Vb(Eigen::Index(global.size()), 3);
+  for (size_t k = 0; k < global.size(); ++k) Vb.row(Eigen::Index(k)) = point(global[k]).transpose();
+  Triangles Fb(Eigen::Index(facets.size()), 3);
+  for (size_t f = 0; f < facets.size(); ++f) Fb.row(Eigen::Index(f)) << facets[f][0], facets[f][1], facets[f][2];
+  const MeshTopology band(Vb, Fb);
+  std::vector<char> made(facets.size(), 0);
+  std::fill(made.begin(), made.begin() + long(delta.added.size()), 1);
+  MeshEdit edit(band);
+  if (remesh_flat_patches(edit, made, [&](int v) { return global[size_t(v)] >= n; }, admit).patches_remeshed == 0 || !edit.moved.empty())
+    return false;
+  // Back to the call's ids: the made facets kept and the patches' new ones (their points after the delta's).
+  std::vector<Tri> added;
+  for (size_t f = 0; f < delta.added.size(); ++f)
+    if (!edit.removed.count(int(f))) added.push_back(delta.added[f]);
+  const int extra = n + int(delta.new_points.size());
+  for (Tri t : edit.added) {
+    for (int& v : t) v = v < int(global.size()) ? global[size_t(v)] : extra + (v - int(global.size()));
+    added.push_back(t);
+  }
+  std::vector<Vec3> points = delta.new_points;
+  points.insert(points.end(), edit.new_points.begin(), edit.new_points.end());
+  std::vector<std::pair<int, Vec3>> moves;
+  for (size_t i = 0; i < delta.moved.size(); ++i) moves.push_back({delta.moved[i], delta.moved_to[i]});
+  delta = make_delta(input, delta.removed, moves, points, added);  // (points the patches dropped go)
   return true;
 }
 

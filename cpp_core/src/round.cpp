@@ -534,7 +534,7 @@ RoundResult round_edges_after(const Points& V, const Triangles& F, const std::ve
   // checked as any (guard.h): one that fails is not taken, the rounds stay as they were made.
   auto remesh = [&]() {
     MeshDelta made = delta;
-    if (!remesh_flat_patches(V, F, delta, within_reach_of(chains, chain_options))) return false;
+    if (!remesh_flat_patches(input, delta, within_reach_of(chains, chain_options))) return false;
     double reach = 0, tol = INFINITY;
     for (const RoundOptions& o : chain_options) reach = std::max(reach, o.reach * o.max_radius()), tol = std::min(tol, o.effective_tolerance());
     try {

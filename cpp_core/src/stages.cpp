@@ -106,7 +106,7 @@ RoundResult round_in_stages(const Points& V, const Triangles& F, const std::vect
   StepOrigin origin;
   apply_delta(V, F, a.delta, V1, F1, &origin);
   out.delta = delta_through(V, F, V1, F1, origin, b.delta);
-  remesh_flat_patches(V, F, out.delta, within_reach_of(chains, own));  // the second stage cut the first's facets
+  remesh_flat_patches(MeshTopology(V, F), out.delta, within_reach_of(chains, own));  // the second stage cut the first's facets
   apply_delta(V, F, out.delta, out.vertices, out.triangles);
   out.chains = a.chains;
   out.chains.insert(out.chains.end(), b.chains.begin(), b.chains.end());

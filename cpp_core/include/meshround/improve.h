@@ -44,9 +44,10 @@ ImproveStats improve_new_facets(MeshEdit& edit, const std::unordered_set<int>& k
 // corner where `admit` allows, and they add no edge the mesh has outside the patch.
 ImproveStats remesh_flat_patches(MeshEdit& edit, const std::vector<char>& made, const std::function<bool(int)>& may_go,
                                  const std::function<bool(const Vec3&)>& admit);
-// The same over a call's result: `delta` is what the call made of (V, F) (its added facets the made ones, its
+// The same over a call's result: `delta` is what the call made of `input` (its added facets the made ones, its
 // new points the vertices that may go); it becomes the result with the patches meshed again. False (delta
-// as it was) when no patch was.
-bool remesh_flat_patches(const Points& V, const Triangles& F, MeshDelta& delta, const std::function<bool(const Vec3&)>& admit);
+// as it was) when no patch was. It costs what the band costs: the made facets and the kept ones around them
+// are meshed as a mesh of their own.
+bool remesh_flat_patches(const MeshTopology& input, MeshDelta& delta, const std::function<bool(const Vec3&)>& admit);
 
 }  // namespace meshround
