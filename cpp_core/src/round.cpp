@@ -532,11 +532,11 @@ RoundResult round_edges_after(const Points& V, const Triangles& F, const std::ve
   }
   // Flat patches of the made facets with one under 10 degrees meshed again whole (improve.h), the result then
   // checked as any (guard.h): one that fails is not taken, the rounds stay as they were made.
+  double reach = 0, tol = INFINITY;  // the network's largest reach and smallest tolerance
+  for (const RoundOptions& o : chain_options) reach = std::max(reach, o.reach * o.max_radius()), tol = std::min(tol, o.effective_tolerance());
   auto remesh = [&]() {
     MeshDelta made = delta;
     if (!remesh_flat_patches(input, delta, within_reach_of(chains, chain_options))) return false;
-    double reach = 0, tol = INFINITY;
-    for (const RoundOptions& o : chain_options) reach = std::max(reach, o.reach * o.max_radius()), tol = std::min(tol, o.effective_tolerance());
     try {
       check_result(edit_of(input, delta), chains[0], reach, tol, chains.size() > 1 ? &chains : nullptr);
       return true;
@@ -563,11 +563,8 @@ RoundResult round_edges_after(const Points& V, const Triangles& F, const std::ve
   if (remeshed || std::any_of(network.begin(), network.end(), [](const NetworkPart& net) { return !net.corners.empty(); })) {
     if (passes == 1) apply_delta(V, F, delta, cur_V, cur_F);
     Vec3 lo = Vec3::Constant(INFINITY), hi = Vec3::Constant(-INFINITY);
-    double reach = 0;
-    for (size_t k = 0; k < chains.size(); ++k) {
-      for (const Vec3& p : chains[k].points) lo = lo.cwiseMin(p), hi = hi.cwiseMax(p);
-      reach = std::max(reach, chain_options[k].reach * chain_options[k].max_radius());
-    }
+    for (const SharpChain& c : chains)
+      for (const Vec3& p : c.points) lo = lo.cwiseMin(p), hi = hi.cwiseMax(p);
     recount_new_facets(V, F, cur_V, cur_F, lo.array() - 2 * reach, hi.array() + 2 * reach, &result.report.thin_facets,
                        &result.report.min_new_angle_deg);
     result.report.cusp_facets = std::min(result.report.cusp_facets, result.report.thin_facets);  // (a later round's cut)
