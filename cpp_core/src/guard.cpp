@@ -141,20 +141,44 @@ class BoundaryRule {
   std::vector<End> ends_;
 };
 
+// New boundary edges (their middles `at`) with a hole or a flipped facet of the input within `reach` of one of
+// them: the gap next to that flaw was left open (its walk stops at the missing facet, or turns at the facet
+// that faces the other way), so the refusal names the input's flaw (non_manifold_input), not the result.
+void blame_input_flaw(const MeshEdit& edit, const EdgeFlaws& was, const std::vector<Vec3>& at, double reach) {
+  const std::pair<const std::vector<std::uint64_t>*, std::string> flaws[] = {
+      {&was.boundary, "the mesh is open (a hole in it, or its edge) where the rounding goes, at %; fill the hole first"},
+      {&was.misoriented, "the facets are oriented against each other (a flipped facet) where the rounding goes, at %; repair the mesh there first"}};
+  for (const auto& [keys, says] : flaws)
+    for (std::uint64_t old : *keys) {
+      const Vec3 a = edit.input.point(int(old >> 32)), b = edit.input.point(int(old & 0xffffffffu));
+      for (const Vec3& x : at) {
+        double t;
+        const Vec3 p = closest_point_on_segment(x, a, b, &t);  // (a large facet's side: its nearest point)
+        if ((p - x).norm() <= reach) {
+          const size_t at_mark = says.find('%');
+          throw InputFlaw(says.substr(0, at_mark) + format_point(p) + says.substr(at_mark + 1), p);
+        }
+      }
+    }
+}
+
 // No boundary edge but those the rule allows (above), no boundary vertex moved off the boundary: a hole or
 // the mesh's edge the band ran into is the input's fault (a hole in a round whose radius is changed). A hole
 // wholly inside what the round replaces goes with it, as in the CAD fillet.
-void check_new_boundary(const MeshEdit& edit, const std::vector<std::uint64_t>& was, const std::vector<std::uint64_t>& is,
-                        const BoundaryRule& rule, double reach) {
+void check_new_boundary(const MeshEdit& edit, const EdgeFlaws& was, const std::vector<std::uint64_t>& is, const BoundaryRule& rule,
+                        double reach) {
   const std::string open = "the mesh is open (a hole in it, or its edge) where the rounding goes, at ";
   for (const auto& [v, to] : edit.moved)
     if (!rule.keeps(v, to))
-      report_new_flaw(edit, was, to, reach, "a vertex of the mesh boundary moved off it", open, "fill the hole first");
+      report_new_flaw(edit, was.boundary, to, reach, "a vertex of the mesh boundary moved off it", open, "fill the hole first");
   std::vector<std::uint64_t> fresh;
-  std::set_difference(is.begin(), is.end(), was.begin(), was.end(), std::back_inserter(fresh));
+  std::set_difference(is.begin(), is.end(), was.boundary.begin(), was.boundary.end(), std::back_inserter(fresh));
+  std::vector<Vec3> refused;
   for (std::uint64_t key : fresh)
-    if (!rule.allows(key))
-      report_new_flaw(edit, was, edge_middle(edit, key), reach, "a new boundary edge, a hole in the mesh", open, "fill the hole first");
+    if (!rule.allows(key)) refused.push_back(edge_middle(edit, key));
+  if (refused.empty()) return;
+  blame_input_flaw(edit, was, refused, reach);
+  refuse("a new boundary edge, a hole in the mesh", refused.front());
 }
 
 // A vertex of the input's boundary that the result keeps stays on its boundary: a hole whose edge the band
@@ -485,7 +509,7 @@ void check_result(const MeshEdit& edit, const SharpChain& chain, double reach, d
   const double slack = on_plane_slack(span, magnitude);
 
   const EdgeFlaws was = edge_flaws(before, changed), is = edge_flaws(after, changed);
-  check_new_boundary(edit, was.boundary, is.boundary, BoundaryRule(edit, was.boundary, chain, reach, tolerance, slack), reach);
+  check_new_boundary(edit, was, is.boundary, BoundaryRule(edit, was.boundary, chain, reach, tolerance, slack), reach);
   check_boundary_kept(edit, was.boundary, is.boundary, after, reach);
   check_boundary_loops(edit, was.boundary, is.boundary, changed);
   check_new_flaws(edit, was.non_manifold, is.non_manifold, reach, "a new non-manifold edge, shared by more than two facets",

@@ -170,3 +170,51 @@ def test_a_flipped_facet_at_a_corner_is_named_as_the_inputs(box_arrays, blend, w
     f = int(np.argmin(np.linalg.norm(V[F].mean(axis=1) - np.array(where), axis=1)))
     F[f] = F[f][[0, 2, 1]]
     assert_refused(V, F, CORNER_SEEDS[blend], RADIUS, "non_manifold_input", r"oriented against each other \(a flipped facet\)")
+
+
+# ------------------------------------- 7. a hole or a flipped facet on the faces a round's end is cut from
+# The L bracket's shoulder (cases.l_bracket(1), CAD mesh: each face a few large facets) ends on the block's end
+# face (x = 80) and on the 135-degree wall; each end's cap is cut from the facets there. With one of those facets
+# missing (a hole) or facing the other way, the gap between the round's end profile and the cut facets could not
+# be closed and the refusal read "a new boundary edge, a hole in the mesh at (66.97, 0, 25)" (result_invalid), a
+# place on the front face away from the flaw. Now it names the input's flaw (non_manifold_input) at a point of
+# the facet's sides. ("front-beside-chain": the seed then picks the wall's foot, whose end meets the hole.)
+L_BRACKET_FACETS = {"end-face-beyond-cap": (80.0, 14.3, 6.7), "wall-above-cap": (75.7, 8.7, 30.0),
+                    "end-face-cap": (80.0, 4.3, 6.7), "front-beside-chain": (75.7, 0.0, 6.7)}
+
+
+def l_bracket_arrays():
+    case = cases.case("l_bracket_135")
+    V, F = meshconv.mesh_to_arrays(case.mesh("cad"))
+    return V, F, [tuple(s) for s in case.seeds], case.radius
+
+
+@pytest.mark.parametrize("flaw", ["hole", "flip"])
+@pytest.mark.parametrize("where", list(L_BRACKET_FACETS))
+def test_a_hole_or_a_flipped_facet_where_a_round_s_end_cap_is_cut_is_named_as_the_inputs(where, flaw):
+    V, F, seeds, radius = l_bracket_arrays()
+    f = int(np.argmin(np.linalg.norm(V[F].mean(axis=1) - np.array(L_BRACKET_FACETS[where]), axis=1)))
+    corners = V[F[f]]
+    if flaw == "hole":
+        F = np.delete(F, f, axis=0)
+        says = r"the mesh is open \((a hole in it|a hole beside)"
+    else:
+        F = F.copy()
+        F[f] = F[f][[0, 2, 1]]
+        says = r"oriented against each other \(a flipped facet\)"
+    error = assert_refused(V, F, seeds, radius, "non_manifold_input", says)
+    assert any(on_a_side(p, corners) for p in points_named(error)), error
+
+
+def on_a_side(p, corners, within=1e-3):
+    """Point p lies on one of the triangle's sides."""
+    p = np.array(p)
+    for a, b in zip(corners, np.roll(corners, -1, axis=0)):
+        t = np.clip(np.dot(p - a, b - a) / np.dot(b - a, b - a), 0.0, 1.0)
+        if np.linalg.norm(a + t * (b - a) - p) <= within:
+            return True
+    return False
+
+
+def points_named(message):
+    return [tuple(map(float, m)) for m in re.findall(r"\(([-\d.e]+), ([-\d.e]+), ([-\d.e]+)\)", str(message))]
