@@ -4,6 +4,7 @@
 #include <array>
 #include <cmath>
 #include <set>
+#include <unordered_map>
 
 namespace meshround {
 
@@ -28,30 +29,40 @@ int count_thin_facets(const MeshTopology& mesh, const MeshEdit& edit, double* mi
   return thin;
 }
 
-void recount_new_facets(const Points& V, const Triangles& F, const Points& out_V, const Triangles& out_F, const Vec3& lo,
-                        const Vec3& hi, int* thin_out, double* smallest_out) {
-  auto near = [&](const Points& P, const Triangles& T, Eigen::Index f) {
-    for (int k = 0; k < 3; ++k) {
-      const Vec3 p = P.row(T(f, k)).transpose();
-      if (!(p.array() < lo.array()).any() && !(p.array() > hi.array()).any()) return true;
-    }
-    return false;
+void recount_new_facets(const Points& V, const Triangles& F, const MeshDelta& delta, int* thin_out, double* smallest_out) {
+  std::unordered_map<int, Vec3> moved;
+  for (size_t i = 0; i < delta.moved.size(); ++i) moved.emplace(delta.moved[i], delta.moved_to[i]);
+  auto input_point = [&](int v) -> Vec3 { return V.row(v).transpose(); };
+  auto point = [&](int v) -> Vec3 {
+    if (v >= delta.input_vertices) return delta.new_points[size_t(v - delta.input_vertices)];
+    const auto it = moved.find(v);
+    return it != moved.end() ? it->second : input_point(v);
   };
-  auto corners = [](const Points& P, const Triangles& T, Eigen::Index f) {
-    std::array<std::array<double, 3>, 3> c;
-    for (int k = 0; k < 3; ++k) c[k] = {P(T(f, k), 0), P(T(f, k), 1), P(T(f, k), 2)};
+  using Corners = std::array<std::array<double, 3>, 3>;
+  auto corners = [](const std::array<Vec3, 3>& p) {  // from the smallest corner on, in the facet's order
+    Corners c;
+    for (int k = 0; k < 3; ++k) c[size_t(k)] = {p[size_t(k)].x(), p[size_t(k)].y(), p[size_t(k)].z()};
     std::rotate(c.begin(), std::min_element(c.begin(), c.end()), c.end());
     return c;
   };
-  std::set<std::array<std::array<double, 3>, 3>> input;
-  for (Eigen::Index f = 0; f < F.rows(); ++f)
-    if (near(V, F, f)) input.insert(corners(V, F, f));
+  std::set<Corners> removed;
+  for (int f : delta.removed) removed.insert(corners({input_point(F(f, 0)), input_point(F(f, 1)), input_point(F(f, 2))}));
   int thin = 0;
   double smallest = 180;
-  for (Eigen::Index f = 0; f < out_F.rows(); ++f) {
-    if (!near(out_V, out_F, f) || input.count(corners(out_V, out_F, f))) continue;
-    const double a = smallest_angle_deg(out_V.row(out_F(f, 0)).transpose(), out_V.row(out_F(f, 1)).transpose(), out_V.row(out_F(f, 2)).transpose());
+  auto count = [&](const std::array<Vec3, 3>& p) {
+    const double a = smallest_angle_deg(p[0], p[1], p[2]);
     thin += a < kThinDeg, smallest = std::min(smallest, a);
+  };
+  for (const auto& f : delta.added) {
+    const std::array<Vec3, 3> p{point(f[0]), point(f[1]), point(f[2])};
+    if (!removed.count(corners(p))) count(p);
+  }
+  if (!moved.empty()) {  // kept input facets with a moved corner
+    std::vector<char> is_removed(size_t(F.rows()), 0);
+    for (int f : delta.removed) is_removed[size_t(f)] = 1;
+    for (Eigen::Index f = 0; f < F.rows(); ++f)
+      if (!is_removed[size_t(f)] && (moved.count(F(f, 0)) || moved.count(F(f, 1)) || moved.count(F(f, 2))))
+        count({point(F(f, 0)), point(F(f, 1)), point(F(f, 2))});
   }
   *thin_out = thin, *smallest_out = smallest;
 }

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <vector>
 
+#include "meshround/mesh_delta.h"
 #include "meshround/mesh_edit.h"
 #include "meshround/types.h"
 
@@ -19,11 +20,10 @@ double smallest_angle_deg(const Vec3& a, const Vec3& b, const Vec3& c);
 // how many are under kThinDeg; their smallest angle and the replaced input facets' (degrees) out.
 int count_thin_facets(const MeshTopology& mesh, const MeshEdit& edit, double* min_new, double* min_input);
 
-// The thin facets (and the smallest angle) among (out_V, out_F)'s facets that are not (V, F)'s, into
-// `thin` and `smallest`. Only facets with a corner in the box [lo, hi] are looked at: the caller's box
-// holds every made facet.
-void recount_new_facets(const Points& V, const Triangles& F, const Points& out_V, const Triangles& out_F, const Vec3& lo,
-                        const Vec3& hi, int* thin, double* smallest);
+// The thin facets (and the smallest angle) among the facets of `delta` applied to (V, F) that are not (V, F)'s
+// -- the made facets but those that put back an input facet the delta removed, and the kept facets with a moved
+// corner -- into `thin` and `smallest`. From the delta alone: what it costs follows the band, not the mesh.
+void recount_new_facets(const Points& V, const Triangles& F, const MeshDelta& delta, int* thin, double* smallest);
 
 // A cusp of a round's end cap (ends.h EndSegment): where the round's end profile leaves a face's trace
 // tangentially, `step` the profile's step across there and `radius` the round's.

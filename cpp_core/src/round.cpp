@@ -560,19 +560,17 @@ RoundResult round_edges_after(const Points& V, const Triangles& F, const std::ve
   }
   // Later rounds and corner patches replace facets that earlier rounds made (and counted): the new facets
   // are counted again, within the chains' reach.
-  if (remeshed || std::any_of(network.begin(), network.end(), [](const NetworkPart& net) { return !net.corners.empty(); })) {
-    if (passes == 1) apply_delta(V, F, delta, cur_V, cur_F);
-    Vec3 lo = Vec3::Constant(INFINITY), hi = Vec3::Constant(-INFINITY);
-    for (const SharpChain& c : chains)
-      for (const Vec3& p : c.points) lo = lo.cwiseMin(p), hi = hi.cwiseMax(p);
-    recount_new_facets(V, F, cur_V, cur_F, lo.array() - 2 * reach, hi.array() + 2 * reach, &result.report.thin_facets,
-                       &result.report.min_new_angle_deg);
+  const bool corners = std::any_of(network.begin(), network.end(), [](const NetworkPart& net) { return !net.corners.empty(); });
+  if (remeshed || corners) {
+    recount_new_facets(V, F, delta, &result.report.thin_facets, &result.report.min_new_angle_deg);
     result.report.cusp_facets = std::min(result.report.cusp_facets, result.report.thin_facets);  // (a later round's cut)
     if (remeshed) {  // (one chain: its own figures are the call's)
       ChainReport& own = result.chains[0].report;
       own.thin_facets = result.report.thin_facets, own.cusp_facets = result.report.cusp_facets;
       result.report.thin_facets_short_of_room = own.reach_for_room > 0 ? own.thin_facets : 0;
     }
+  }
+  if (corners) {  // (cur_V, cur_F: the network's result, made by its passes)
     std::vector<double> radii;
     for (const RoundOptions& o : chain_options) radii.push_back(o.max_radius());
     result.report.corners = report_corners(cur_V, cur_F, network, spheres, result.chains, radii);

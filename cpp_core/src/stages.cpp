@@ -115,12 +115,7 @@ RoundResult round_in_stages(const Points& V, const Triangles& F, const std::vect
   out.report.facets_removed = int(out.delta.removed.size());
   out.report.facets_added = int(out.delta.added.size());
   // Thin facets among the made ones, over both stages (the second replaces facets the first made).
-  Vec3 lo = Vec3::Constant(INFINITY), hi = Vec3::Constant(-INFINITY);
-  for (const SharpChain& c : chains)
-    for (const Vec3& p : c.points) lo = lo.cwiseMin(p), hi = hi.cwiseMax(p);
-  const double reach = 2 * opt.reach * opt.max_radius();
-  recount_new_facets(V, F, out.vertices, out.triangles, lo.array() - reach, hi.array() + reach, &out.report.thin_facets,
-                     &out.report.min_new_angle_deg);
+  recount_new_facets(V, F, out.delta, &out.report.thin_facets, &out.report.min_new_angle_deg);
   out.report.cusp_facets = std::min(out.report.cusp_facets, out.report.thin_facets);
   for (const RolledCorner& c : rolled) {
     const int odd = index_in_first[c.odd], round = nearest_round(out.chains, size_t(offset), c.vertex);
