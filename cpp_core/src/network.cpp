@@ -35,12 +35,15 @@ constexpr double kCornerBallMissShare = 0.1;
 constexpr double kSameCornerRadiusShare = 1e-3;
 // A radius law into a corner holds its value over this many radii before the corner (its end's setback).
 constexpr double kCornerLawHoldRadii = 2.0;
-// Three rounds of one convexity, two of radius r (or of r and a smaller one) and one of R > r: the two roll on
-// around the larger one's end where the ring their balls' centres run on round its axis, R - r, is at least
-// this share of r (R at least 1.125 r), as OCCT's fillet makes that corner whatever the radii (its pivot).
-// A tighter ring puts their contact line on the face on a circle far smaller than the ball: measured on a box
-// corner with R = 8, r = 7.5 came 0.0131 r off OCCT's torus and 7.6 / 7 / 8 was refused result_invalid on the
-// fine mesh; r = 7, 7.1 (the ring 0.127 r), 6 and 4 / 7 were within 0.0093 r on fine, coarse and CAD meshes.
+// Three rounds of one convexity with different radii: the two others roll on around the end of the one with
+// the largest radius R (its pivot), as OCCT's fillet makes that corner (ChFi3d's three-edge corner: a torus
+// where the two have one radius r, else a ball whose radius goes from one's to the other's with an S law);
+// where two share the largest radius (8 / 8 / 5) one of them is the pivot and the ring the others' balls'
+// centres run on round its axis, R - r, starts from nothing. A ring under this share of r is tight
+// (RolledCorner::tight): there the profile stations are resolved finer (round.cpp sample_profiles). Measured
+// on a box corner (fine, coarse and CAD meshes), against OCCT's fillet beyond / within 1 r of the corner:
+// 7.5 / 7.5 / 8 0.0094-0.0127 / 0.0073-0.0104 r (0.0131 r beyond with the usual stations, then refused),
+// 8 / 8 / 5 0.0087-0.0104 / 0.0087-0.0090 r (OCCT: a B-spline corner).
 constexpr double kRolledRingShare = 0.125;
 // ... and where the larger round's chain stands square to the face the other two share, within this many
 // degrees: then their balls' centres run on a circle round its axis (a torus, as OCCT's fillet makes it).
@@ -99,20 +102,16 @@ double shared_corner_radius(const MeshTopology& input, const std::vector<SharpCh
   if (*hi - *lo > kSameCornerRadiusShare * own[ids[0]].effective_tolerance())
     throw RoundingError(ErrorCode::CornerNotBlendable, "the chains picked at and around " + format_point(picked[ids[0]]) + " meet at " +
                         format_point(input.point(v)) + " with radii " + format_number(*lo) + " and " + format_number(*hi) +
-                        " there: " + (ids.size() == 3 ? "three rounds of one convexity take different radii only where one's is at least " +
-                                                         format_number(1 + kRolledRingShare) + " times each other's (the two roll on around its round); "
-                                                         "other radii there need a corner patch, not made yet"
-                                                       : std::string("rounds of different radii meeting at a corner are not blended yet")) +
-                        " (give them one radius at that corner)");
+                        " there: rounds of different radii meeting at a corner are not blended yet (give them one radius at that corner)");
   return *hi;
 }
 
 // Three rounds of one convexity ending at vertex v (chains `ids`, each with its own options): the one (0, 1
-// or 2) whose radius there is larger than both others' by kRolledRingShare of the larger of them at least,
-// or -1. The two then roll on around its end as one round, as OCCT's fillet makes that corner (a torus where
-// they have one radius, else a ball whose radius goes from one's to the other's round the end;
-// require_square_corner); equal radii meet in the corner's ball (ball_corner), others are refused
-// (shared_corner_radius). A law still changing near the corner gives -1 here, and is refused there.
+// or 2) whose radius there is the largest (the first of two that share it) and larger than the smallest, or
+// -1. The two others then roll on around its end as one round, as OCCT's fillet makes that corner (a torus
+// where they have one radius, else a ball whose radius goes from one's to the other's round the end;
+// require_square_corner); one radius meets in the corner's ball (ball_corner). A law still changing near the
+// corner gives -1 here, and is refused there (shared_corner_radius).
 int larger_radius_at(const std::vector<SharpChain>& chains, const std::vector<RoundOptions>& own, const std::vector<size_t>& ids, int v) {
   double r[3];
   for (int i = 0; i < 3; ++i) {
@@ -121,9 +120,9 @@ int larger_radius_at(const std::vector<SharpChain>& chains, const std::vector<Ro
     if (changing) return -1;
   }
   const double same = kSameCornerRadiusShare * own[ids[0]].effective_tolerance();
-  for (int i = 0; i < 3; ++i) {
+  for (int i = 0; i < 3; ++i) {  // the largest, and larger than the smallest (one radius: the corner's ball)
     const double a = r[(i + 1) % 3], b = r[(i + 2) % 3];
-    if (r[i] - std::max(a, b) >= kRolledRingShare * std::max(a, b) - same) return i;  // (R = 1.125 r exactly, too)
+    if (r[i] >= std::max(a, b) - same && r[i] > std::min(a, b) + same) return i;
   }
   return -1;
 }
@@ -142,6 +141,16 @@ std::array<double, 2> pair_radii_at(const MeshTopology& input, const std::vector
     if (changing[i])
       throw law_still_changing(picked[c.pair[size_t(i)]], input.point(v), ", where it rolls on around another round into one of another radius");
   return r;
+}
+
+// Whether the ring the pair's balls' centres run on round the odd round's axis at vertex v is tight: the odd
+// radius less the pair's larger one under kRolledRingShare of that one (RolledCorner::tight).
+bool ring_is_tight(const std::vector<SharpChain>& chains, const std::vector<RoundOptions>& own, const RolledCorner& c, int v) {
+  bool changing = false;
+  const double R = radius_at_end(own[c.odd], chains[c.odd], v, &changing);
+  const double r = std::max(radius_at_end(own[c.pair[0]], chains[c.pair[0]], v, &changing),
+                            radius_at_end(own[c.pair[1]], chains[c.pair[1]], v, &changing));
+  return R - r < kRolledRingShare * r;
 }
 
 // Refuses (corner_not_blendable, naming the vertex) a corner where chain `odd` of `ids` -- the larger
@@ -306,6 +315,7 @@ std::vector<int> plan_stages(const MeshTopology& input, const std::vector<SharpC
                               format_point(c.vertex) + ", where it is rounded first and they roll on around its end: a variable radius "
                               "along it is not blended there yet (give it one radius; theirs may vary)");
         if (!own.empty()) c.pair_radius = pair_radii_at(input, chains, own, c, v, picked);
+        if (!own.empty() && std::abs(sum) == 3) c.tight = ring_is_tight(chains, own, c, v);
         ask(c.odd, 0, c.vertex), ask(c.pair[0], 1, c.vertex), ask(c.pair[1], 1, c.vertex);
         rolled->push_back(c);
         continue;

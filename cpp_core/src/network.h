@@ -31,26 +31,32 @@ struct NetworkPart {
   std::vector<Vec3> earlier_round_points;
   const std::vector<SharpChain>* chains = nullptr;  // all chains of the call (on the input), when several
   const std::vector<ExactRound>* earlier_rounds = nullptr;  // rounds of a first stage (stages.h), if any
+  // Rolled corners with a tight ring (RolledCorner::tight): their vertices, near which the profile stations are
+  // resolved finer (round.cpp sample_profiles).
+  const std::vector<Vec3>* tight_rings = nullptr;
 };
 
 // The corner at a chain end (its end vertex is the corner's point), or null.
 const CornerEnd* corner_at(const NetworkPart& net, const Vec3& end_point);
 
 // Where three picked chains end at one vertex with convex and concave edges mixed -- a pocket's rim
-// corner: two convex rim edges and the concave wall edge between them -- or with one convexity and one
-// radius at least 1.125 times the other two's -- a box's vertical edge of 8 between top edges of 5 --, the
+// corner: two convex rim edges and the concave wall edge between them -- or with one convexity and radii that
+// differ -- a box's vertical edge of 8 between top edges of 5; the largest radius, or one of two that share it --, the
 // rolling ball makes the odd chain's round first, and the other two then as one round rolling
 // on around its end (a torus where the faces are square, as in OCCT's fillet). round_edges makes the odd
 // chains in a first call and traces the others anew on its result, where the sharp edge runs on around
 // the odd round's end (stages.h).
 struct RolledCorner {
   Vec3 vertex;
-  size_t odd = 0;                    // the chain of the other convexity, or of the larger radius: rounded first
+  size_t odd = 0;                    // the chain of the other convexity, or of the largest radius: rounded first
   std::array<size_t, 2> pair{0, 0};  // rounded after it, as one round
   bool odd_convex = false, pair_convex = false;
   // The pair's radii at the vertex where they differ, else {0, 0}: their round goes from one to the other
   // round the odd round's end (round_in_stages), as OCCT's fillet lets its ball's radius evolve there.
   std::array<double, 2> pair_radius{0.0, 0.0};
+  // The ring the pair's balls' centres run on round the odd round's axis is under kRolledRingShare of their
+  // radius (a radius R between r and 1.125 r; none at one end where R is the pair's larger radius, 8 / 8 / 5).
+  bool tight = false;
 };
 
 // Each chain's stage: 0 made first, 1 made on stage 0's result (RolledCorner, one entry per such vertex

@@ -54,13 +54,25 @@ double loft_error(const RoundingSurface& surface, const ProfileStation& exact) {
   return worst;
 }
 
+// Stations closer than this share of the radius are not resolved further: where a coarse mesh's crease makes
+// the contact jump (the ball pivots about one centre), a finer spacing only makes the loft ring (a tenth of r
+// failed 8 tests so: rounds on rounds, a varying S chain, the S plate's R 20 bend) ...
+constexpr double kStationStepShare = 0.25;
+// ... but within kTightRingReach radii of a rolled corner with a tight ring (network.h RolledCorner::tight) they
+// are, down to this share: there the balls' centres turn round a ring far smaller than the balls and their
+// contacts on the odd round's end sweep at up to 16 times the centres' pace (a quarter r left 7.5 / 7.5 / 8 on a
+// box corner 0.0131 r off OCCT's torus just past the ring's start; a twentieth, 0.0094 r).
+constexpr double kTightRingStepShare = 0.05;
+constexpr double kTightRingReach = 2.5;
+
 // Profiles along the chain: uniform to start with, then wherever the loft strays from the exact ball.
 // Each station is at least two facets of the round (a quad between it and the next): stations count
 // against the work budget as two facets, checked before they are solved.
 // An open chain's balls are solved on [s_lo, s_hi] (short of a capped end whose face leans over the
-// round, see ends.h); a loop's on all of it.
+// round, see ends.h); a loop's on all of it. `tight_rings` (or null): NetworkPart::tight_rings.
 std::vector<ProfileStation> sample_profiles(const SpineContext& ctx, const RadiusLaw& law, double tolerance, long max_new_facets,
-                                            double s_lo, double s_hi, RoundingSurface& surface, double* loft_deviation) {
+                                            double s_lo, double s_hi, const std::vector<Vec3>* tight_rings, RoundingSurface& surface,
+                                            double* loft_deviation) {
   const SharpChain& chain = ctx.chain;
   const double L = chain.length, span = s_hi - s_lo;
   const double planned = std::ceil(span / (0.5 * law.min_radius())) + 1;
@@ -71,9 +83,13 @@ std::vector<ProfileStation> sample_profiles(const SpineContext& ctx, const Radiu
     const double s = chain.closed ? L * i / n0 : s_lo + span * i / (n0 - 1);
     st.push_back(solve_station(ctx, law, s));
   }
-  // Stations closer than a quarter radius are not resolved further: where a coarse mesh's crease makes
-  // the contact jump (the ball pivots about one centre), a finer spacing only makes the loft ring.
-  const double min_step = std::max(1e-4 * L, 0.25 * law.min_radius());
+  const double min_step = std::max(1e-4 * L, kStationStepShare * law.min_radius());
+  const double tight_step = std::max(1e-4 * L, kTightRingStepShare * law.min_radius());
+  auto near_tight_ring = [&](const ProfileStation& mid) {
+    return tight_rings && std::any_of(tight_rings->begin(), tight_rings->end(), [&](const Vec3& v) {
+             return (mid.centre - v).norm() <= kTightRingReach * law.max_radius();
+           });
+  };
   for (int round = 0; round < 12; ++round) {
     surface = loft_profiles(st, chain.closed, L);
     std::vector<ProfileStation> extra;
@@ -81,7 +97,7 @@ std::vector<ProfileStation> sample_profiles(const SpineContext& ctx, const Radiu
     const size_t intervals = chain.closed ? st.size() : st.size() - 1;
     for (size_t i = 0; i < intervals; ++i) {
       const double a = st[i].s, b = i + 1 < st.size() ? st[i + 1].s : L;
-      if (b - a < min_step) continue;
+      if (b - a < tight_step || (b - a < min_step && !near_tight_ring(st[i]) && !near_tight_ring(st[(i + 1) % st.size()]))) continue;
       const double s = 0.5 * (a + b);
       ProfileStation mid = solve_station(ctx, law, s);
       const double e = loft_error(surface, mid);
@@ -122,7 +138,8 @@ std::vector<ProfileStation> end_cut_profiles(const SpineContext& ctx, const Radi
   const EndPlan ends = plan_ends(ctx, law, net, tolerance);
   const EndCut* cut = ends.cut;
   const double* setback = ends.setback;
-  std::vector<ProfileStation> st = sample_profiles(ctx, law, tolerance, max_new_facets, setback[0], L - setback[1], surface, loft_deviation);
+  std::vector<ProfileStation> st =
+      sample_profiles(ctx, law, tolerance, max_new_facets, setback[0], L - setback[1], net.tight_rings, surface, loft_deviation);
   if (!cut[0].active && !cut[1].active) return st;
   for (int end = 0; end < 2; ++end) {
     if (!cut[end].active) continue;
@@ -446,7 +463,7 @@ NetworkPlan plan_network(const Points& V, const Triangles& F, const std::vector<
 }
 
 RoundResult round_edges_after(const Points& V, const Triangles& F, const std::vector<Vec3>& seeds, const RoundOptions& opt,
-                              const std::vector<ExactRound>& earlier) {
+                              const std::vector<ExactRound>& earlier, const std::vector<Vec3>& tight_rings) {
   const auto start = Clock::now();
   const CancelScope cancel_scope(opt.cancelled);
   poll_cancel();  // cancelled before the call: refused at once
@@ -505,6 +522,7 @@ RoundResult round_edges_after(const Points& V, const Triangles& F, const std::ve
     NetworkPart& net = network[k];
     if (chains.size() > 1) net.chains = &chains;
     if (!earlier.empty()) net.earlier_rounds = &earlier;
+    if (!tight_rings.empty()) net.tight_rings = &tight_rings;
     if (std::any_of(net.corners.begin(), net.corners.end(), [](const CornerEnd& c) { return c.other_made || c.sphere; }))
       net.earlier_round_points = made_points;
     std::vector<Vec3>* keep = network.size() > 1 && !net.corners.empty() ? &made_points : nullptr;

@@ -95,7 +95,10 @@ RoundResult round_in_stages(const Points& V, const Triangles& F, const std::vect
     }
   RoundResult b;
   try {
-    b = round_edges_after(a.vertices, a.triangles, picks[1], stage_opt[1], earlier);
+    std::vector<Vec3> tight_rings;
+    for (const RolledCorner& c : rolled)
+      if (c.tight) tight_rings.push_back(c.vertex);
+    b = round_edges_after(a.vertices, a.triangles, picks[1], stage_opt[1], earlier, tight_rings);
   } catch (const RoundingError& e) {
     rethrow_on_own_mesh(e, MeshTopology(V, F), picks[1].front(), opt);
   }

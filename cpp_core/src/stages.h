@@ -21,8 +21,9 @@ namespace meshround {
 
 // round_edges on a mesh whose rounds `earlier` a first stage made: base facets on them are measured on
 // their exact surfaces (spine.h ExactRound), so a round rolling on around one's end is tangent to it.
+// `tight_rings`: the vertices of rolled corners with a tight ring (NetworkPart::tight_rings).
 RoundResult round_edges_after(const Points& V, const Triangles& F, const std::vector<Vec3>& seeds, const RoundOptions& opt,
-                              const std::vector<ExactRound>& earlier);
+                              const std::vector<ExactRound>& earlier, const std::vector<Vec3>& tight_rings = {});
 
 // `seeds[k]` picks chain k again (the middle of one of its edges), `stage[k]` is plan_stages' stage.
 RoundResult round_in_stages(const Points& V, const Triangles& F, const std::vector<SharpChain>& chains, const std::vector<Vec3>& seeds,
