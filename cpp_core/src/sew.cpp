@@ -197,6 +197,50 @@ bool remove_islands(MeshEdit& edit, const std::vector<std::vector<int>>& loops, 
   return true;
 }
 
+// Whether the loop lies in one plane: within `flat` (or a hair of its size) of its own (Newell's) plane.
+bool loop_is_flat(const MeshEdit& edit, const std::vector<int>& loop, double flat) {
+  const Vec3 n = newell_normal(edit, loop);
+  if (!(n.norm() > 0)) return false;
+  Vec3 middle = Vec3::Zero();
+  for (int v : loop) middle += edit.point(v) / double(loop.size());
+  double size = 0, off = 0;
+  for (int v : loop) size = std::max(size, (edit.point(v) - middle).norm()), off = std::max(off, std::abs((edit.point(v) - middle).dot(n.normalized())));
+  return off <= std::max(flat, 1e-6 * size);
+}
+
+// A gap that runs over two faces of the solid -- where a CAD mesh's large facets on both sides of one of its
+// sharp edges were all cut out (a chain's capped end on one face and its other end's cap, or its band, on the
+// next: a box corner's rolled round from the front face round to the bottom) -- is split along the input edges
+// those removed facets shared, into pieces that are each one plane; filled whole, it cut through the solid
+// (facets from the bottom face to the top front edge, sound in topology, 8 mm off the box). A loop that is one
+// plane, or that no such edge splits so, is left as it is. Loops of more than kMaxSplitSides sides are not split.
+constexpr size_t kMaxSplitSides = 2000;
+void split_at_removed_edges(const MeshEdit& edit, const std::vector<int>& loop, double flat, std::vector<std::vector<int>>& out) {
+  const MeshTopology& in = edit.input;
+  const size_t n = loop.size();
+  if (n < 4 || n > kMaxSplitSides || loop_is_flat(edit, loop, flat)) {
+    out.push_back(loop);
+    return;
+  }
+  auto removed_edge = [&](int a, int b) {  // an input edge whose facets are all removed
+    if (a >= in.num_vertices() || b >= in.num_vertices()) return false;
+    const std::vector<int> sides = in.edge_facets(a, b);
+    return !sides.empty() && std::all_of(sides.begin(), sides.end(), [&](int g) { return edit.removed.count(g) > 0; });
+  };
+  for (size_t i = 0; i < n; ++i)
+    for (size_t j = i + 2; j < n; ++j) {
+      if ((j + 1) % n == i || !removed_edge(loop[i], loop[j])) continue;
+      const std::vector<int> a(loop.begin() + long(i), loop.begin() + long(j) + 1);
+      std::vector<int> b(loop.begin() + long(j), loop.end());
+      b.insert(b.end(), loop.begin(), loop.begin() + long(i) + 1);
+      if (!loop_is_flat(edit, a, flat) && !loop_is_flat(edit, b, flat)) continue;
+      split_at_removed_edges(edit, a, flat, out);
+      split_at_removed_edges(edit, b, flat, out);
+      return;
+    }
+  out.push_back(loop);
+}
+
 }  // namespace
 
 SewStats sew_round(MeshEdit& edit, size_t round_begin, size_t round_end, const Refinement& fill) {
@@ -235,6 +279,11 @@ SewStats sew_round(MeshEdit& edit, size_t round_begin, size_t round_end, const R
   };
   std::vector<std::vector<int>> loops = find_gaps();
   if (remove_islands(edit, loops, round_begin, round_end)) loops = find_gaps();
+  {
+    std::vector<std::vector<int>> pieces;
+    for (const std::vector<int>& loop : loops) split_at_removed_edges(edit, loop, fill.flat_tolerance, pieces);
+    loops.swap(pieces);
+  }
   for (std::vector<int>& loop : loops) {
     poll_cancel();
     if (loop.size() < 3) {
