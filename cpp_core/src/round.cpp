@@ -54,9 +54,8 @@ double loft_error(const RoundingSurface& surface, const ProfileStation& exact) {
   return worst;
 }
 
-// Stations closer than this share of the radius are not resolved further: where a coarse mesh's crease makes
-// the contact jump (the ball pivots about one centre), a finer spacing only makes the loft ring (a tenth of r
-// failed 8 tests so: rounds on rounds, a varying S chain, the S plate's R 20 bend) ...
+// Stations closer than this share of the radius are not resolved further: where a coarse mesh's crease makes the
+// contact jump, a finer spacing only makes the loft ring (r / 20 everywhere failed 8 tests) ...
 constexpr double kStationStepShare = 0.25;
 // ... but within kTightRingReach radii of a rolled corner with a tight ring (network.h RolledCorner::tight) they
 // are, down to this share: there the balls' centres turn round a ring far smaller than the balls and their

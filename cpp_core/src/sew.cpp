@@ -197,15 +197,19 @@ bool remove_islands(MeshEdit& edit, const std::vector<std::vector<int>>& loops, 
   return true;
 }
 
-// Whether the loop lies in one plane: within `flat` (or a hair of its size) of its own (Newell's) plane.
+// Whether the loop lies in one plane (its own, Newell's), by triangulate_polygon's rule: within `flat` or what
+// float input coordinates hold (mesh.h on_plane_slack).
 bool loop_is_flat(const MeshEdit& edit, const std::vector<int>& loop, double flat) {
   const Vec3 n = newell_normal(edit, loop);
   if (!(n.norm() > 0)) return false;
-  Vec3 middle = Vec3::Zero();
-  for (int v : loop) middle += edit.point(v) / double(loop.size());
-  double size = 0, off = 0;
-  for (int v : loop) size = std::max(size, (edit.point(v) - middle).norm()), off = std::max(off, std::abs((edit.point(v) - middle).dot(n.normalized())));
-  return off <= std::max(flat, 1e-6 * size);
+  const Vec3 p0 = edit.point(loop[0]);
+  double size = 0, off = 0, magnitude = 0;
+  for (int v : loop) {
+    const Vec3 p = edit.point(v);
+    size = std::max(size, (p - p0).norm()), off = std::max(off, std::abs((p - p0).dot(n.normalized())));
+    magnitude = std::max(magnitude, p.cwiseAbs().maxCoeff());
+  }
+  return off <= std::max(on_plane_slack(size, magnitude), flat);
 }
 
 // A gap that runs over two faces of the solid -- where a CAD mesh's large facets on both sides of one of its
